@@ -1,0 +1,3 @@
+// placeholder: parser throughput benchmark (issue 2)
+#include <benchmark/benchmark.h>
+BENCHMARK_MAIN();

@@ -1,0 +1,39 @@
+# Compiler warnings and sanitizers for the project's own targets. Third-party
+# headers are included as SYSTEM so their warnings do not count.
+
+add_library(fireswarm_build_flags INTERFACE)
+add_library(fireswarm::build_flags ALIAS fireswarm_build_flags)
+target_compile_options(fireswarm_build_flags INTERFACE
+  -Wall -Wextra -Wpedantic -Wshadow -Wconversion -Wsign-conversion
+  -Wnon-virtual-dtor -Wold-style-cast -Wcast-align -Woverloaded-virtual
+  -Wnull-dereference -Wdouble-promotion -Wimplicit-fallthrough)
+if(FIRESWARM_WERROR)
+  target_compile_options(fireswarm_build_flags INTERFACE -Werror)
+endif()
+
+if(FIRESWARM_SANITIZE)
+  # Applied globally so every object, test and the executable share one runtime.
+  add_compile_options(-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all)
+  add_link_options(-fsanitize=address,undefined)
+endif()
+
+# fireswarm_module(<name> SOURCES ... [PUBLIC_DEPS ...] [PRIVATE_DEPS ...])
+# A module library: public headers in <name>/include/fireswarm/<name>/, private
+# sources in <name>/src/. Target fireswarm_<name>, alias fireswarm::<name>.
+# A module whose issue has not landed yet has no SOURCES and is an INTERFACE target.
+function(fireswarm_module name)
+  cmake_parse_arguments(M "" "" "SOURCES;PUBLIC_DEPS;PRIVATE_DEPS" ${ARGN})
+  if(NOT M_SOURCES)
+    add_library(fireswarm_${name} INTERFACE)
+    add_library(fireswarm::${name} ALIAS fireswarm_${name})
+    target_include_directories(fireswarm_${name} INTERFACE ${CMAKE_CURRENT_SOURCE_DIR}/include)
+    target_link_libraries(fireswarm_${name} INTERFACE ${M_PUBLIC_DEPS})
+    return()
+  endif()
+  add_library(fireswarm_${name} STATIC ${M_SOURCES})
+  add_library(fireswarm::${name} ALIAS fireswarm_${name})
+  target_include_directories(fireswarm_${name}
+    PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/include
+    PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/src)
+  target_link_libraries(fireswarm_${name} PUBLIC ${M_PUBLIC_DEPS} PRIVATE ${M_PRIVATE_DEPS} fireswarm::build_flags)
+endfunction()

@@ -1,0 +1,1 @@
+// placeholder: filled in by the radio-link work (issue 2)

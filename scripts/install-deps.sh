@@ -1,0 +1,46 @@
+#!/usr/bin/env bash
+# Installs what fireswarm needs to build and test, from Debian 12 packages only.
+# Idempotent and non-interactive: apt is skipped when every package is present,
+# so CI and developers can run it before every build. Also adds the loopback
+# multicast route that LCM's udpm:// needs on a machine whose only interface is lo.
+set -euo pipefail
+
+PACKAGES=(
+  cmake g++ make pkg-config git
+  liblcm-dev liblcm-bin
+  libeigen3-dev libompl-dev libgeographiclib-dev libbox2d-dev
+  libboost-dev libboost-system-dev libboost-program-options-dev
+  libboost-serialization-dev libboost-filesystem-dev
+  libgtest-dev libgmock-dev libbenchmark-dev
+  nlohmann-json3-dev libyaml-cpp-dev libspdlog-dev
+  iproute2
+)
+
+missing=()
+for p in "${PACKAGES[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")
+done
+
+if [ ${#missing[@]} -gt 0 ]; then
+  if [ "$(id -u)" -ne 0 ]; then
+    echo "install-deps: missing packages: ${missing[*]}; run this script as root" >&2
+    exit 1
+  fi
+  echo "install-deps: installing ${missing[*]}"
+  export DEBIAN_FRONTEND=noninteractive
+  apt-get update -qq
+  apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
+
+# LCM udpm:// needs a route for 224.0.0.0/4. Where a default route exists the
+# kernel uses it; on a machine with only lo we add one. Best effort: without
+# root or iproute2 the udpm:// tests skip and say why.
+if command -v ip >/dev/null 2>&1 && [ "$(id -u)" -eq 0 ]; then
+  if ! ip route show default 2>/dev/null | grep -q . &&
+     ! ip route show 224.0.0.0/4 2>/dev/null | grep -q .; then
+    ip link set lo up 2>/dev/null || true
+    ip link set lo multicast on 2>/dev/null || true
+    ip route add 224.0.0.0/4 dev lo 2>/dev/null &&
+      echo "install-deps: added multicast route 224.0.0.0/4 on lo" || true
+  fi
+fi

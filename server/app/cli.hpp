@@ -1,0 +1,41 @@
+// Shared plumbing for the `fireswarm` subcommands: option parsing with --help,
+// and the exit-code convention (0 ok, 1 a check failed, 2 bad input).
+#pragma once
+
+#include <boost/program_options.hpp>
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace fireswarm::app {
+
+inline constexpr int kExitOk = 0;
+inline constexpr int kExitCheckFailed = 1;
+inline constexpr int kExitBadInput = 2;
+
+/// Thrown for bad command-line input or input files; main() prints it and exits 2.
+class UsageError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// One subcommand: `fireswarm <name> [args...]`.
+struct Command {
+  const char* name;
+  const char* summary;
+  /// Runs the subcommand; `args` excludes the program and subcommand names.
+  /// Returns the process exit code; throws UsageError on bad input.
+  int (*run)(const std::vector<std::string>& args);
+};
+
+/// Parses `args` against `options` (plus --help) and the positional spec.
+/// Returns false when --help was given (usage already printed to stdout).
+/// Throws UsageError naming the offending flag or value.
+bool ParseCommandLine(const std::string& command_name, const std::string& usage_line,
+                      const boost::program_options::options_description& options,
+                      const boost::program_options::positional_options_description& positional,
+                      const std::vector<std::string>& args,
+                      boost::program_options::variables_map& values);
+
+}  // namespace fireswarm::app

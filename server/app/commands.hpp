@@ -1,0 +1,13 @@
+// The subcommands of the `fireswarm` executable. Each lives in its own
+// <name>_command.cpp and is listed once in main.cpp.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace fireswarm::app {
+
+int RunRadioDecode(const std::vector<std::string>& args);
+int RunRadioBench(const std::vector<std::string>& args);
+
+}  // namespace fireswarm::app

@@ -1,0 +1,61 @@
+// fireswarm: command center for a fleet of fire-search drones.
+// `fireswarm <subcommand> [options]`; `fireswarm <subcommand> --help` for each.
+
+#include <array>
+#include <exception>
+#include <iostream>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "cli.hpp"
+#include "commands.hpp"
+
+namespace {
+
+using fireswarm::app::Command;
+
+constexpr std::array kCommands{
+    Command{"radio-bench", "simulate N vehicles on one half-duplex channel and print link figures",
+            fireswarm::app::RunRadioBench},
+    Command{"radio-decode", "decode a raw APOne byte capture into one JSON line per frame",
+            fireswarm::app::RunRadioDecode},
+};
+
+void PrintUsage(std::ostream& out) {
+  out << "usage: fireswarm <subcommand> [options]\n\nsubcommands:\n";
+  for (const Command& command : kCommands) {
+    out << "  " << command.name << std::string(16 - std::string_view(command.name).size(), ' ')
+        << command.summary << "\n";
+  }
+  out << "\n'fireswarm <subcommand> --help' describes each one.\n";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const std::vector<std::string> words(argv + 1, argv + argc);
+  if (words.empty()) {
+    PrintUsage(std::cerr);
+    return fireswarm::app::kExitBadInput;
+  }
+  if (words[0] == "--help" || words[0] == "-h" || words[0] == "help") {
+    PrintUsage(std::cout);
+    return fireswarm::app::kExitOk;
+  }
+  for (const Command& command : kCommands) {
+    if (words[0] != command.name) continue;
+    try {
+      return command.run(std::vector<std::string>(words.begin() + 1, words.end()));
+    } catch (const fireswarm::app::UsageError& e) {
+      std::cerr << e.what() << "\n";
+      return fireswarm::app::kExitBadInput;
+    } catch (const std::exception& e) {
+      std::cerr << "fireswarm " << command.name << ": " << e.what() << "\n";
+      return fireswarm::app::kExitBadInput;
+    }
+  }
+  std::cerr << "fireswarm: unknown subcommand '" << words[0] << "'\n\n";
+  PrintUsage(std::cerr);
+  return fireswarm::app::kExitBadInput;
+}
