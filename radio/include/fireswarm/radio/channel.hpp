@@ -21,13 +21,17 @@
 
 namespace fireswarm::radio {
 
-/// Loss and bit errors rise with transmitter-receiver distance: below
-/// `clean_range_m` only the base rates apply; between clean_range_m and
-/// max_range_m the extra loss rises as ((d - clean) / (max - clean))^2 to 1.
-/// The bit-error rate scales by the same factor: ber(d) = ber0 + (1 - ber0) * f * 1e-3.
+/// Loss and bit errors rise with transmitter-receiver distance d (metres, 3-D).
+/// Range factor f(d): 0 up to `clean_range_m`, ((d - clean) / (max - clean))^2
+/// between the two, 1 at and beyond `max_range_m` (every reception lost there).
+/// Loss probability: loss + (1 - loss) * f.
+/// Bit-error rate: ber + (1 - ber) * f * bit_error_rate_at_max_range.
+/// The defaults (infinite ranges) switch the range model off.
 struct RangeModel {
   double clean_range_m = std::numeric_limits<double>::infinity();
   double max_range_m = std::numeric_limits<double>::infinity();
+  /// Extra bit-error rate as the range factor reaches 1, in [0, 1].
+  double bit_error_rate_at_max_range = 1e-3;
 };
 
 struct ChannelConfig {
@@ -37,9 +41,11 @@ struct ChannelConfig {
   /// starts no earlier than t + turnaround.
   Nanos turnaround = std::chrono::milliseconds(5);
   double loss = 0.0;            ///< probability a transmission is lost for one receiver
-  double bit_error_rate = 0.0;  ///< probability each received bit is flipped
+  double bit_error_rate = 0.0;  ///< probability each received data bit is flipped
   RangeModel range;
-  /// Throws std::invalid_argument naming the field when a value is out of range.
+  /// Throws std::invalid_argument naming the field when a value is out of range
+  /// (baud <= 0, bits_per_byte < 8, negative turnaround, a probability outside
+  /// [0, 1], a negative or NaN range, max_range_m < clean_range_m).
   void Validate() const;
 };
 
@@ -61,74 +67,99 @@ struct AirRecord {
   std::span<const std::uint8_t> bytes;  ///< valid during the observer call only
 };
 
+/// Counters over resolved transmissions, except `busy`, which runs up to now().
 struct ChannelStats {
   std::uint64_t transmissions = 0;
   std::uint64_t bytes_sent = 0;
-  std::uint64_t collisions = 0;           ///< transmissions lost to an overlap
-  std::uint64_t receptions_lost = 0;      ///< (transmission, receiver) pairs dropped by loss
+  std::uint64_t collisions = 0;       ///< transmissions lost to an overlap
+  std::uint64_t receptions = 0;       ///< (transmission, receiver) pairs delivered
+  std::uint64_t receptions_lost = 0;  ///< (transmission, receiver) pairs dropped by loss
   std::uint64_t bits_flipped = 0;
-  Nanos busy{0};                          ///< time at least one radio was transmitting
+  Nanos busy{0};  ///< time at least one radio was transmitting (overlaps counted once)
+  friend bool operator==(const ChannelStats&, const ChannelStats&) = default;
 };
 
+/// Not thread-safe: one simulation loop owns the channel.
 class SharedChannel {
  public:
-  /// `seed` seeds the channel's own random generator (loss and bit errors).
+  /// `seed` seeds the channel's own random generator (loss and bit errors): the
+  /// same seed and the same calls give the same bytes, stats and air records.
   /// Throws std::invalid_argument when the configuration is invalid.
   SharedChannel(const ChannelConfig& config, std::uint64_t seed);
 
-  /// Adds a radio; every radio hears every transmission except its own.
+  /// Adds a radio; every radio hears every transmission except its own (radios
+  /// added while a transmission is on the air hear it too). IDs count from 0.
+  /// Throws std::invalid_argument when a coordinate is not finite.
   RadioId AddRadio(RadioPosition position = {});
+  /// Moves a radio; the range model uses positions at the end of each transmission.
+  /// Throws std::out_of_range for an unknown radio, std::invalid_argument for a
+  /// coordinate that is not finite.
   void SetPosition(RadioId radio, RadioPosition position);
 
   /// Starts a transmission of `bytes` from `radio` at `start`, decided at `now`.
   /// A radio that is receiving needs start >= now + turnaround; a radio still
-  /// transmitting may append back to back (start >= end of its transmission).
-  /// Returns the end time. Throws std::logic_error when the start is too early
-  /// or `now` lies before the channel's current time.
+  /// transmitting at `now` may append back to back (start >= end of its last
+  /// transmission). Returns the end time, start + AirtimeOf(bytes.size()); an
+  /// empty burst puts nothing on the air and returns `start`.
+  /// Throws std::logic_error when the start is too early or `now` lies before
+  /// now(); std::out_of_range (a logic_error) for an unknown radio.
   Nanos Transmit(RadioId radio, Nanos now, Nanos start, std::span<const std::uint8_t> bytes);
 
-  /// Resolves every transmission that ended at or before `t`: collided ones are
-  /// lost; the others are delivered to each receiver (with loss and bit errors).
+  /// Moves the channel's time to `t` and resolves, in order of end time, every
+  /// transmission that ended at or before `t`: collided ones are lost to everyone;
+  /// the others reach each other radio (with loss and bit errors).
+  /// Throws std::logic_error when `t` lies before now(). The air observer must not
+  /// call AdvanceTo().
   void AdvanceTo(Nanos t);
 
   /// Earliest end of a transmission not yet resolved; nullopt when the air is quiet.
   std::optional<Nanos> NextEventTime() const;
 
-  /// Appends the bytes `radio` received so far (in order of transmission end) to `out`.
+  /// Appends the bytes `radio` received so far (in order of transmission end) to
+  /// `out` and empties its inbox. Throws std::out_of_range for an unknown radio.
   void Drain(RadioId radio, std::vector<std::uint8_t>& out);
 
-  /// Called once per transmission when it is resolved.
+  /// Called once per transmission when it is resolved, in resolution order.
   void SetAirObserver(std::function<void(const AirRecord&)> observer);
 
   Nanos now() const { return now_; }
   const ChannelConfig& config() const { return config_; }
   const ChannelStats& stats() const { return stats_; }
-  Nanos AirtimeOf(std::size_t bytes) const { return Airtime(bytes, config_.baud, config_.bits_per_byte); }
+  std::size_t radio_count() const { return radios_.size(); }
+  /// Time `bytes` bytes occupy on the air at the configured baud and framing.
+  Nanos AirtimeOf(std::size_t bytes) const {
+    return Airtime(bytes, config_.baud, config_.bits_per_byte);
+  }
 
  private:
   struct Transmission {
     RadioId transmitter;
     Nanos start;
     Nanos end;
+    std::uint64_t sequence;  // submission order, breaks ties between equal ends
     std::vector<std::uint8_t> bytes;
     bool collided = false;
+    // Radios whose own transmissions overlap this one: they cannot hear it.
+    std::vector<RadioId> overlapping_transmitters{};
   };
   struct Radio {
     RadioPosition position;
-    Nanos transmitting_until{0};
+    Nanos transmitting_until{0};  // end of its latest transmission
     std::vector<std::uint8_t> inbox;
   };
 
-  void Resolve(Transmission& transmission);
-  double LossProbability(const Radio& from, const Radio& to) const;
-  double BitErrorRate(const Radio& from, const Radio& to) const;
+  Radio& RadioAt(RadioId radio);
+  void AddBusyTime(Nanos from, Nanos to);
+  void Resolve(const Transmission& transmission);
+  void Deliver(const Transmission& transmission, RadioId receiver);
+  double RangeFactor(const Radio& from, const Radio& to) const;
 
   ChannelConfig config_;
   std::mt19937_64 rng_;
   std::vector<Radio> radios_;
   std::vector<Transmission> in_flight_;  // not yet resolved, any order
+  std::uint64_t next_sequence_ = 0;
   Nanos now_{0};
-  Nanos busy_until_{0};  // end of the latest transmission counted in stats_.busy
   ChannelStats stats_;
   std::function<void(const AirRecord&)> observer_;
 };
