@@ -1,3 +1,133 @@
-// placeholder: parser throughput benchmark (issue 2)
+// FrameParser throughput (bytes/s of stream) in both checksum modes, on a clean
+// stream of mixed-size frames and on one with 10 % garbage between frames; the
+// garbage case also reports the fraction of intact frames found.
+//   build/bin/parser_bench [--benchmark_filter=...]
 #include <benchmark/benchmark.h>
+
+#include <cstdint>
+#include <map>
+#include <random>
+#include <tuple>
+#include <vector>
+
+#include "fireswarm/radio/parser.hpp"
+
+namespace {
+
+using fireswarm::radio::AppendFrame;
+using fireswarm::radio::ChecksumMode;
+using fireswarm::radio::FrameParser;
+using fireswarm::radio::FrameView;
+
+constexpr std::size_t kStreamBytes = 8 << 20;  // 8 MiB per pass
+constexpr std::size_t kReadSize = 4096;        // bytes per Feed(), like a serial read
+
+enum class SizeMix : int {
+  kFleet,    // the fleet's traffic: polls, telemetry, fire reports, heartbeats, chunks
+  kUniform,  // data sizes uniform in 0..255
+};
+
+struct BenchStream {
+  std::vector<std::uint8_t> bytes;
+  std::vector<std::uint64_t> intact_offsets;  // where each written frame starts
+};
+
+std::size_t DataSize(SizeMix mix, std::mt19937_64& rng) {
+  const auto uniform = [&rng](int low, int high) {
+    return static_cast<std::size_t>(std::uniform_int_distribution(low, high)(rng));
+  };
+  if (mix == SizeMix::kUniform) return uniform(0, 255);
+  // Payload sizes of docs/protocol.md: poll 4, telemetry 41, fire report 38,
+  // heartbeat 9, mission chunk 12 + 12 per waypoint.
+  const std::size_t kind = uniform(0, 99);
+  if (kind < 30) return 4;
+  if (kind < 60) return 41;
+  if (kind < 75) return 38;
+  if (kind < 85) return 9;
+  return 12 + 12 * uniform(1, 20);
+}
+
+// Frames, with garbage runs (random bytes, a third opening with a false preamble)
+// between them making up `garbage_fraction` of the stream on average.
+BenchStream MakeStream(ChecksumMode mode, SizeMix mix, double garbage_fraction) {
+  std::mt19937_64 rng(42);
+  BenchStream stream;
+  std::vector<std::uint8_t> data;
+  while (stream.bytes.size() < kStreamBytes) {
+    data.resize(DataSize(mix, rng));
+    for (std::uint8_t& byte : data) byte = static_cast<std::uint8_t>(rng());
+    const std::size_t before = stream.bytes.size();
+    stream.intact_offsets.push_back(before);
+    AppendFrame(stream.bytes, static_cast<std::uint8_t>(rng() % 8), 0x10, data, mode);
+    if (garbage_fraction <= 0.0) continue;
+    const double frame_size = static_cast<double>(stream.bytes.size() - before);
+    const double mean = frame_size * garbage_fraction / (1.0 - garbage_fraction);
+    auto garbage = static_cast<std::size_t>(std::uniform_real_distribution(0.0, 2.0 * mean)(rng));
+    if (garbage >= 6 && rng() % 3 == 0) {
+      stream.bytes.insert(stream.bytes.end(), {0x70, 0x96, 0xAC});
+      garbage -= 3;
+    }
+    for (; garbage > 0; --garbage) stream.bytes.push_back(static_cast<std::uint8_t>(rng()));
+  }
+  return stream;
+}
+
+const BenchStream& CachedStream(ChecksumMode mode, SizeMix mix, double garbage_fraction) {
+  static std::map<std::tuple<ChecksumMode, SizeMix, double>, BenchStream> cache;
+  const auto key = std::tuple(mode, mix, garbage_fraction);
+  auto it = cache.find(key);
+  if (it == cache.end()) it = cache.emplace(key, MakeStream(mode, mix, garbage_fraction)).first;
+  return it->second;
+}
+
+void BM_FrameParser(benchmark::State& state, ChecksumMode mode, SizeMix mix,
+                    double garbage_fraction) {
+  const BenchStream& stream = CachedStream(mode, mix, garbage_fraction);
+  const std::span<const std::uint8_t> all(stream.bytes);
+  std::uint64_t intact_found = 0;
+  std::uint64_t frames = 0;
+  for (auto _ : state) {
+    FrameParser parser(mode);
+    std::size_t next_intact = 0;
+    const auto on_frame = [&](const FrameView& frame) {
+      // Count a frame as intact only where one was written (coincidental accepts
+      // from garbage do not count).
+      while (next_intact < stream.intact_offsets.size() &&
+             stream.intact_offsets[next_intact] < frame.offset) {
+        ++next_intact;
+      }
+      if (next_intact < stream.intact_offsets.size() &&
+          stream.intact_offsets[next_intact] == frame.offset) {
+        ++intact_found;
+      }
+      benchmark::DoNotOptimize(frame.data.data());
+    };
+    for (std::size_t at = 0; at < all.size(); at += kReadSize) {
+      parser.Feed(all.subspan(at, std::min(kReadSize, all.size() - at)), on_frame);
+    }
+    parser.Finish(on_frame);
+    frames += parser.stats().frames;
+  }
+  const auto passes = static_cast<double>(state.iterations());
+  state.SetBytesProcessed(static_cast<std::int64_t>(state.iterations()) *
+                          static_cast<std::int64_t>(stream.bytes.size()));
+  state.counters["frames_per_pass"] = static_cast<double>(frames) / passes;
+  state.counters["intact_found_fraction"] = static_cast<double>(intact_found) / passes /
+                                            static_cast<double>(stream.intact_offsets.size());
+}
+
+BENCHMARK_CAPTURE(BM_FrameParser, crc16_clean_fleet_mix, ChecksumMode::kCrc16, SizeMix::kFleet,
+                  0.0);
+BENCHMARK_CAPTURE(BM_FrameParser, crc16_clean_uniform_0_255, ChecksumMode::kCrc16,
+                  SizeMix::kUniform, 0.0);
+BENCHMARK_CAPTURE(BM_FrameParser, crc16_garbage10_fleet_mix, ChecksumMode::kCrc16, SizeMix::kFleet,
+                  0.10);
+BENCHMARK_CAPTURE(BM_FrameParser, xor_clean_fleet_mix, ChecksumMode::kXor, SizeMix::kFleet, 0.0);
+BENCHMARK_CAPTURE(BM_FrameParser, xor_clean_uniform_0_255, ChecksumMode::kXor, SizeMix::kUniform,
+                  0.0);
+BENCHMARK_CAPTURE(BM_FrameParser, xor_garbage10_fleet_mix, ChecksumMode::kXor, SizeMix::kFleet,
+                  0.10);
+
+}  // namespace
+
 BENCHMARK_MAIN();

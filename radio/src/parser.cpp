@@ -1,1 +1,150 @@
-// placeholder: filled in by the radio-link work (issue 2)
+// Streaming APOne frame parser (seed 5.3.4): preamble search, length, checksum.
+//
+// Every decision is taken only when the bytes it depends on are buffered (or the
+// stream has ended), so any chunking of the same stream gives the same frames and
+// the same statistics as parsing the whole stream at once.
+#include "fireswarm/radio/parser.hpp"
+
+#include <algorithm>
+#include <cstring>
+
+namespace fireswarm::radio {
+namespace {
+
+// Whether a preamble starts at a position, as far as the buffered bytes tell.
+enum class PreambleMatch : std::uint8_t { kNo, kYes, kMaybe };
+
+// Compares the bytes in [at, end) with the preamble: kMaybe when every buffered
+// byte matches but the preamble runs past `end`.
+PreambleMatch PreambleAt(const std::uint8_t* at, const std::uint8_t* end) {
+  for (std::size_t i = 0; i < kPreamble.size(); ++i) {
+    if (at + i == end) return PreambleMatch::kMaybe;
+    if (at[i] != kPreamble[i]) return PreambleMatch::kNo;
+  }
+  return PreambleMatch::kYes;
+}
+
+// Whether another preamble starts in [first, last) of a candidate; bytes up to
+// `end` are buffered (a preamble starting near `last` may run past it).
+PreambleMatch PreambleStartsIn(const std::uint8_t* first, const std::uint8_t* last,
+                               const std::uint8_t* end) {
+  PreambleMatch result = PreambleMatch::kNo;
+  while (first < last) {
+    const void* hit = std::memchr(first, kPreamble[0], static_cast<std::size_t>(last - first));
+    if (hit == nullptr) break;
+    const auto* at = static_cast<const std::uint8_t*>(hit);
+    const PreambleMatch match = PreambleAt(at, end);
+    if (match == PreambleMatch::kYes) return match;
+    if (match == PreambleMatch::kMaybe) result = match;
+    first = at + 1;
+  }
+  return result;
+}
+
+// Whether the frame starting at `frame` (preamble included, fully buffered) carries
+// the right checksum over receiver ID, message ID, length and data.
+bool ChecksumMatches(const std::uint8_t* frame, std::size_t data_size, ChecksumMode mode) {
+  const std::span<const std::uint8_t> covered(frame + kPreamble.size(),
+                                              kHeaderSize - kPreamble.size() + data_size);
+  const std::uint8_t* checksum = frame + kHeaderSize + data_size;
+  if (mode == ChecksumMode::kXor) return Xor8(covered) == checksum[0];
+  const auto received = static_cast<std::uint16_t>(checksum[0] | (checksum[1] << 8));
+  return Crc16(covered) == received;
+}
+
+}  // namespace
+
+FrameParser::FrameParser(ChecksumMode mode) : mode_(mode) {
+  // After Next() returns nullopt at most a maximal candidate plus two look-ahead
+  // bytes stay buffered, so Push() always finds room after moving them to the front.
+  static_assert(kBufferSize >= 2 * (kMaxFrameSize + 2));
+}
+
+std::size_t FrameParser::Push(std::span<const std::uint8_t> bytes) {
+  if (begin_ == end_) {
+    begin_ = end_ = 0;
+  } else if (kBufferSize - end_ < bytes.size() && begin_ > 0) {
+    std::memmove(buffer_.data(), buffer_.data() + begin_, end_ - begin_);
+    end_ -= begin_;
+    begin_ = 0;
+  }
+  const std::size_t taken = std::min(bytes.size(), kBufferSize - end_);
+  if (taken > 0) std::memcpy(buffer_.data() + end_, bytes.data(), taken);
+  end_ += taken;
+  stats_.bytes += taken;
+  return taken;
+}
+
+std::optional<FrameView> FrameParser::Next() {
+  return Scan(/*end_of_stream=*/false);
+}
+
+std::optional<FrameView> FrameParser::Scan(bool end_of_stream) {
+  const std::uint8_t* const buffer = buffer_.data();
+  const std::uint8_t* const end = buffer + end_;
+  const auto skip_to = [&](std::size_t position) {
+    stats_.skipped_bytes += position - begin_;
+    begin_ = position;
+  };
+  while (begin_ < end_) {
+    const void* hit = std::memchr(buffer + begin_, kPreamble[0], end_ - begin_);
+    if (hit == nullptr) {
+      skip_to(end_);
+      break;
+    }
+    const auto start = static_cast<std::size_t>(static_cast<const std::uint8_t*>(hit) - buffer);
+    skip_to(start);
+    const std::uint8_t* const frame = buffer + start;
+    const std::size_t available = end_ - start;
+
+    const PreambleMatch preamble = PreambleAt(frame, end);
+    if (preamble == PreambleMatch::kNo) {
+      skip_to(start + 1);
+      continue;
+    }
+    if (preamble == PreambleMatch::kMaybe) {
+      // At most two trailing bytes that may begin a preamble wait for more bytes.
+      if (!end_of_stream) return std::nullopt;
+      skip_to(end_);
+      break;
+    }
+
+    const std::size_t data_size = available >= kHeaderSize ? frame[kHeaderSize - 1] : 0;
+    const std::size_t frame_size = FrameSize(data_size, mode_);
+    if (available < kHeaderSize || available < frame_size) {
+      if (!end_of_stream) return std::nullopt;  // wait for the rest of the candidate
+      ++stats_.truncated_frames;
+      skip_to(start + 1);
+      continue;
+    }
+
+    if (ChecksumMatches(frame, data_size, mode_)) {
+      ++stats_.frames;
+      begin_ = start + frame_size;
+      return FrameView{.receiver = frame[3],
+                       .message_id = frame[4],
+                       .data = {frame + kHeaderSize, data_size},
+                       .offset = stats_.bytes - available};
+    }
+
+    // A failed candidate: truncated when another preamble starts inside it (its
+    // sender was cut off and a new frame began), else corrupted. Then rescan from
+    // the byte after its first preamble byte so a frame inside it is not lost.
+    const PreambleMatch inner = PreambleStartsIn(frame + 1, frame + frame_size, end);
+    if (inner == PreambleMatch::kMaybe && !end_of_stream) return std::nullopt;
+    if (inner == PreambleMatch::kYes) {
+      ++stats_.truncated_frames;
+    } else {
+      ++stats_.checksum_errors;
+    }
+    skip_to(start + 1);
+  }
+  return std::nullopt;
+}
+
+void FrameParser::Reset() {
+  stats_ = {};
+  begin_ = end_ = 0;
+}
+
+}  // namespace fireswarm::radio

@@ -54,6 +54,9 @@ struct FrameView {
   std::uint8_t receiver = 0;
   std::uint8_t message_id = 0;
   std::span<const std::uint8_t> data;
+  /// Stream position of the frame's first preamble byte, in bytes fed since the
+  /// parser's construction or Reset().
+  std::uint64_t offset = 0;
 };
 
 /// Appends one encoded frame to `out`.

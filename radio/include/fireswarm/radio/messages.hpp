@@ -257,7 +257,8 @@ enum class DecodeError : std::uint8_t {
   kUnknownMessageId,  ///< no payload layout for this ID
   kTooShort,          ///< fewer bytes than the layout needs
   kTooLong,           ///< trailing bytes after the layout
-  kBadValue,          ///< an enum or count out of range
+  kBadValue,          ///< an enum, a count or a range-limited field (heading, correlation)
+                      ///< out of range, or a count that disagrees with the length
 };
 std::string_view ToString(DecodeError error);
 
@@ -269,7 +270,9 @@ struct DecodeResult {
 /// Decodes a frame's data as the payload of `message_id`. Never reads past `data`.
 DecodeResult DecodePayload(std::uint8_t message_id, std::span<const std::uint8_t> data);
 
-/// Appends the payload bytes of `message` (no frame) to `out`.
+/// Appends the payload bytes of `message` (no frame) to `out`. Throws
+/// std::invalid_argument (leaving `out` unchanged) when slot_count or waypoint_count
+/// exceeds its array, which would make the payload too long for a frame.
 void EncodePayload(const Message& message, std::vector<std::uint8_t>& out);
 
 /// Appends `message` as one complete frame addressed to `receiver`.
@@ -277,7 +280,8 @@ void AppendMessageFrame(std::vector<std::uint8_t>& out, std::uint8_t receiver,
                         const Message& message, ChecksumMode mode);
 
 /// Payload size of a message of this ID; for variable-length messages (SlotSchedule,
-/// MissionChunk) the size with the given number of entries.
+/// MissionChunk) the size with the given number of entries. Throws
+/// std::invalid_argument for an ID outside MessageId.
 std::size_t PayloadSize(MessageId id, std::size_t entries = 0);
 
 }  // namespace fireswarm::radio

@@ -48,9 +48,20 @@ class FrameParser {
   /// needed. The view is valid until the next Push()/Next()/Finish().
   std::optional<FrameView> Next();
 
-  /// End of stream: a partial frame still buffered counts as truncated and every
-  /// buffered byte as skipped. The parser is then empty and can be fed again.
-  void Finish();
+  /// End of stream: a partial frame still buffered counts as truncated, and the
+  /// bytes after its first preamble byte are scanned again, so valid frames buffered
+  /// behind it (a short frame after a cut-off long one) still reach `on_frame`. Bytes
+  /// in no valid frame count as skipped. The parser is then empty and can be fed again.
+  template <typename OnFrame>
+  void Finish(OnFrame&& on_frame) {
+    while (const std::optional<FrameView> frame = Scan(/*end_of_stream=*/true)) on_frame(*frame);
+    begin_ = end_ = 0;
+  }
+  /// Finish() for callers that need no frames any more: frames still found in the
+  /// buffered tail are counted in stats() but not delivered.
+  void Finish() {
+    Finish([](const FrameView&) {});
+  }
   /// Forgets buffered bytes and statistics.
   void Reset();
 
@@ -60,6 +71,10 @@ class FrameParser {
  private:
   // Room for a maximal frame plus a window of new bytes; see Push().
   static constexpr std::size_t kBufferSize = 4096;
+
+  // Next() and Finish(): at the end of the stream a candidate that cannot complete
+  // is truncated instead of waited for.
+  std::optional<FrameView> Scan(bool end_of_stream);
 
   ChecksumMode mode_;
   ParserStats stats_;

@@ -1,0 +1,233 @@
+#include "message_json.hpp"
+
+#include <array>
+#include <charconv>
+#include <iterator>
+#include <string_view>
+#include <variant>
+
+namespace fireswarm::app {
+namespace {
+
+namespace radio = fireswarm::radio;
+using Json = nlohmann::ordered_json;
+
+// Names an enum value by its index in `names` (offset by `first`), "unknown" when
+// out of range (possible only for messages built in memory, never decoded ones).
+template <typename Enum, std::size_t N>
+std::string_view EnumName(Enum value, int first, const std::array<std::string_view, N>& names) {
+  const int index = static_cast<int>(value) - first;
+  return index >= 0 && index < static_cast<int>(N) ? names[static_cast<std::size_t>(index)]
+                                                   : "unknown";
+}
+
+std::string_view Name(radio::ReplyKind v) {
+  return EnumName(v, 1, std::array<std::string_view, 3>{"telemetry", "fire_report", "ack"});
+}
+std::string_view Name(radio::FlightMode v) {
+  return EnumName(v, 0,
+                  std::array<std::string_view, 8>{"idle", "takeoff", "search", "investigate",
+                                                  "return_to_launch", "land", "landed", "hold"});
+}
+std::string_view Name(radio::MissionAckStatus v) {
+  return EnumName(v, 0, std::array<std::string_view, 3>{"accepted", "complete", "rejected"});
+}
+std::string_view Name(radio::CommandType v) {
+  return EnumName(
+      v, 1,
+      std::array<std::string_view, 7>{"start_mission", "hold", "resume", "return_to_launch", "land",
+                                      "investigate", "abort"});
+}
+std::string_view Name(radio::CommandResult v) {
+  return EnumName(v, 0, std::array<std::string_view, 3>{"accepted", "rejected", "unsupported"});
+}
+std::string_view Name(radio::ParamStatus v) {
+  return EnumName(
+      v, 0, std::array<std::string_view, 4>{"ok", "unknown_param", "read_only", "out_of_range"});
+}
+
+Json TelemetryFlagNames(std::uint8_t flags) {
+  namespace bits = radio::telemetry_flags;
+  Json names = Json::array();
+  if ((flags & bits::kReportPending) != 0) names.push_back("report_pending");
+  if ((flags & bits::kMissionValid) != 0) names.push_back("mission_valid");
+  if ((flags & bits::kLowBattery) != 0) names.push_back("low_battery");
+  if ((flags & bits::kLinkLost) != 0) names.push_back("link_lost");
+  if ((flags & bits::kGpsFix) != 0) names.push_back("gps_fix");
+  return names;
+}
+
+// A float parameter as the shortest decimal that reads back as the same float
+// (0.0125F prints as 0.0125, not 0.012500000186264515).
+double FloatForJson(float value) {
+  char text[32];
+  const auto written = std::to_chars(std::begin(text), std::end(text), value);
+  double shortest = static_cast<double>(value);
+  std::from_chars(std::begin(text), written.ptr, shortest);
+  return shortest;
+}
+
+Json Header(const radio::MessageHeader& header) {
+  return {{"sender", header.sender}, {"sequence", header.sequence}};
+}
+
+Json Fields(const radio::Poll& m) {
+  Json j = Header(m.header);
+  j["reply"] = Name(m.reply);
+  return j;
+}
+
+Json Fields(const radio::SlotSchedule& m) {
+  Json j = Header(m.header);
+  j["first_slot_delay_us"] = m.first_slot_delay_us;
+  j["guard_us"] = m.guard_us;
+  j["slots"] = Json::array();
+  for (const radio::Slot& slot : m.active()) {
+    j["slots"].push_back({{"receiver", slot.receiver},
+                          {"reply", Name(slot.reply)},
+                          {"slot_bytes", slot.slot_bytes}});
+  }
+  return j;
+}
+
+Json Fields(const radio::Telemetry& m) {
+  Json j = Header(m.header);
+  j["time_ms"] = m.time_ms;
+  j["lat_deg"] = m.lat_deg;
+  j["lon_deg"] = m.lon_deg;
+  j["altitude_m"] = m.altitude_m;
+  j["velocity_north_mps"] = m.velocity_north_mps;
+  j["velocity_east_mps"] = m.velocity_east_mps;
+  j["climb_rate_mps"] = m.climb_rate_mps;
+  j["roll_deg"] = m.roll_deg;
+  j["pitch_deg"] = m.pitch_deg;
+  j["heading_deg"] = m.heading_deg;
+  j["battery_v"] = m.battery_v;
+  j["battery_percent"] = m.battery_percent;
+  j["mode"] = Name(m.mode);
+  j["flags"] = m.flags;
+  j["flag_names"] = TelemetryFlagNames(m.flags);
+  j["pending_reports"] = m.pending_reports;
+  j["mission_id"] = m.mission_id;
+  j["waypoint_index"] = m.waypoint_index;
+  return j;
+}
+
+Json Fields(const radio::FireReport& m) {
+  Json j = Header(m.header);
+  j["report_id"] = m.report_id;
+  j["time_ms"] = m.time_ms;
+  j["lat_deg"] = m.lat_deg;
+  j["lon_deg"] = m.lon_deg;
+  j["sigma_north_m"] = m.sigma_north_m;
+  j["sigma_east_m"] = m.sigma_east_m;
+  j["correlation"] = m.correlation;
+  j["observer_lat_deg"] = m.observer_lat_deg;
+  j["observer_lon_deg"] = m.observer_lon_deg;
+  j["observer_altitude_m"] = m.observer_altitude_m;
+  j["pixel_count"] = m.pixel_count;
+  j["peak_temperature_c"] = m.peak_temperature_c;
+  j["confidence"] = m.confidence;
+  return j;
+}
+
+Json Fields(const radio::FireReportAck& m) {
+  Json j = Header(m.header);
+  j["vehicle"] = m.vehicle;
+  j["report_id"] = m.report_id;
+  return j;
+}
+
+Json Fields(const radio::MissionChunk& m) {
+  Json j = Header(m.header);
+  j["mission_id"] = m.mission_id;
+  j["chunk_index"] = m.chunk_index;
+  j["chunk_count"] = m.chunk_count;
+  j["total_waypoints"] = m.total_waypoints;
+  j["first_waypoint"] = m.first_waypoint;
+  j["waypoints"] = Json::array();
+  for (const radio::Waypoint& w : m.active()) {
+    j["waypoints"].push_back({{"lat_deg", w.lat_deg},
+                              {"lon_deg", w.lon_deg},
+                              {"altitude_m", w.altitude_m},
+                              {"speed_mps", w.speed_mps},
+                              {"flags", w.flags}});
+  }
+  return j;
+}
+
+Json Fields(const radio::MissionAck& m) {
+  Json j = Header(m.header);
+  j["mission_id"] = m.mission_id;
+  j["chunk_index"] = m.chunk_index;
+  j["status"] = Name(m.status);
+  return j;
+}
+
+Json Fields(const radio::Command& m) {
+  Json j = Header(m.header);
+  j["type"] = Name(m.type);
+  j["mission_id"] = m.mission_id;
+  j["lat_deg"] = m.lat_deg;
+  j["lon_deg"] = m.lon_deg;
+  j["altitude_m"] = m.altitude_m;
+  j["radius_m"] = m.radius_m;
+  j["duration_s"] = m.duration_s;
+  return j;
+}
+
+Json Fields(const radio::CommandAck& m) {
+  Json j = Header(m.header);
+  j["acked_sequence"] = m.acked_sequence;
+  j["type"] = Name(m.type);
+  j["result"] = Name(m.result);
+  return j;
+}
+
+Json Fields(const radio::ParamRead& m) {
+  Json j = Header(m.header);
+  j["param_id"] = m.param_id;
+  return j;
+}
+
+Json Fields(const radio::ParamWrite& m) {
+  Json j = Header(m.header);
+  j["param_id"] = m.param_id;
+  j["value"] = FloatForJson(m.value);
+  return j;
+}
+
+Json Fields(const radio::ParamValue& m) {
+  Json j = Header(m.header);
+  j["param_id"] = m.param_id;
+  j["value"] = FloatForJson(m.value);
+  j["status"] = Name(m.status);
+  return j;
+}
+
+Json Fields(const radio::Heartbeat& m) {
+  Json j = Header(m.header);
+  j["time_ms"] = m.time_ms;
+  j["mode"] = Name(m.mode);
+  j["flags"] = m.flags;
+  return j;
+}
+
+}  // namespace
+
+nlohmann::ordered_json MessageToJson(const radio::Message& message) {
+  return std::visit([](const auto& m) { return Fields(m); }, message);
+}
+
+std::string HexString(std::span<const std::uint8_t> bytes) {
+  static constexpr std::string_view kDigits = "0123456789abcdef";
+  std::string hex;
+  hex.reserve(2 * bytes.size());
+  for (const std::uint8_t byte : bytes) {
+    hex.push_back(kDigits[byte >> 4]);
+    hex.push_back(kDigits[byte & 0x0F]);
+  }
+  return hex;
+}
+
+}  // namespace fireswarm::app
