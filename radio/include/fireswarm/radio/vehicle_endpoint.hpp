@@ -1,0 +1,123 @@
+// The vehicle's side of the poll-and-answer discipline (seed 5.3.1.1): the vehicle
+// is the slave and never transmits unless the server gave it the turn, by a Poll
+// addressed to it, a SlotSchedule naming it, or (poll mode) a request addressed to
+// it. A pure core: bytes and the time in, bursts out; no clock, no socket.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <deque>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "fireswarm/radio/discipline.hpp"
+#include "fireswarm/radio/messages.hpp"
+#include "fireswarm/radio/parser.hpp"
+#include "fireswarm/radio/time.hpp"
+
+namespace fireswarm::radio {
+
+/// What the vehicle does with the server's requests. Called from OnReceive(), once
+/// per new request (a retry of the last one is answered from the cache). Must not throw.
+class VehicleRequestHandler {
+ public:
+  virtual ~VehicleRequestHandler() = default;
+  virtual CommandResult OnCommand(const Command& command) = 0;
+  virtual MissionAckStatus OnMissionChunk(const MissionChunk& chunk) = 0;
+  /// Returns the value and status; the endpoint fills in header and param_id.
+  virtual ParamValue OnParamRead(const ParamRead& read) = 0;
+  /// Writes (and persists) the parameter; returns the value now held and the status.
+  virtual ParamValue OnParamWrite(const ParamWrite& write) = 0;
+};
+
+struct VehicleEndpointConfig {
+  std::uint8_t id = 1;  ///< this vehicle's receiver ID, 1..254
+  /// kPoll: a request addressed to this vehicle gives it the turn at once.
+  /// kSlots: the answer waits for a kAck slot. Must match the server's mode.
+  LinkMode mode = LinkMode::kSlots;
+  ChecksumMode checksum = ChecksumMode::kCrc16;
+  LinkTiming timing;
+  /// Unacknowledged fire reports kept; beyond it the oldest is dropped (counted).
+  std::size_t max_queued_reports = 256;
+  /// Throws std::invalid_argument naming the field when a value is out of range.
+  void Validate() const;
+};
+
+struct VehicleEndpointStats {
+  std::uint64_t frames_for_me = 0;         ///< valid frames addressed to this vehicle
+  std::uint64_t broadcast_frames = 0;      ///< valid frames addressed to 255
+  std::uint64_t payload_bytes_for_me = 0;  ///< data bytes of frames addressed to this vehicle
+  std::uint64_t decode_errors = 0;         ///< frames for me whose payload did not decode
+  std::uint64_t replies_sent = 0;          ///< frames transmitted
+  std::uint64_t requests_handled = 0;      ///< requests passed to the handler
+  std::uint64_t duplicate_requests = 0;    ///< retries answered from the cached ack
+  std::uint64_t reports_queued = 0;
+  std::uint64_t reports_acked = 0;
+  std::uint64_t reports_dropped = 0;  ///< overflowed max_queued_reports
+  std::uint64_t turns_skipped = 0;    ///< turns not taken: late, overlapping or too small
+};
+
+class VehicleEndpoint {
+ public:
+  /// `handler` must outlive the endpoint. Throws std::invalid_argument when the
+  /// configuration is invalid.
+  VehicleEndpoint(const VehicleEndpointConfig& config, VehicleRequestHandler& handler);
+
+  /// Feeds the bytes received up to `now` (the end of their reception) and returns
+  /// the replies this vehicle was given turns for, in start order: a Poll or (poll
+  /// mode) a request -> now + turnaround; a SlotSchedule slot -> its computed start,
+  /// if the reply fits in slot_bytes and the start is at least now + turnaround.
+  /// A turn in a frame that surfaces only in a later call (the parser held it back
+  /// behind a corrupted length) has passed and is not taken. Never throws.
+  std::vector<Burst> OnReceive(Nanos now, std::span<const std::uint8_t> bytes);
+
+  /// Latest vehicle state, sent when given a telemetry turn. The endpoint sets the
+  /// header, kReportPending and pending_reports.
+  void SetTelemetry(const Telemetry& telemetry);
+
+  /// Queues a fire report until the server acknowledges it; resends keep its ID.
+  /// Returns the report_id assigned (per vehicle, counting from 0); the header and
+  /// report_id of `report` are overwritten.
+  std::uint16_t QueueFireReport(const FireReport& report);
+
+  std::size_t pending_reports() const { return reports_.size(); }
+  const VehicleEndpointConfig& config() const { return config_; }
+  const VehicleEndpointStats& stats() const { return stats_; }
+  const ParserStats& parser_stats() const { return parser_.stats(); }
+
+ private:
+  struct HandledRequest {
+    MessageId id;
+    std::uint16_t sequence;
+    Message ack;
+  };
+  struct Received {
+    Message message;
+    Nanos frame_end;  // when its last byte arrived
+    bool for_me;      // addressed to this vehicle (else broadcast)
+    bool fresh;       // its last byte came in this call: a turn it gives is still open
+  };
+
+  std::vector<Received> Parse(Nanos now, std::span<const std::uint8_t> bytes);
+  void Handle(const Received& frame, Nanos now, std::vector<Burst>& out);
+  void HandleRequest(const Message& request);
+  void HandleSchedule(const SlotSchedule& schedule, Nanos schedule_end, Nanos now,
+                      std::vector<Burst>& out);
+  std::optional<Message> ReplyFor(ReplyKind kind, std::size_t report_index) const;
+  void Send(Message reply, Nanos start, std::size_t max_bytes, Nanos now, std::vector<Burst>& out);
+  Message AckFor(const Message& request);
+
+  VehicleEndpointConfig config_;
+  VehicleRequestHandler& handler_;
+  FrameParser parser_;
+  Telemetry telemetry_;
+  std::deque<FireReport> reports_;  // oldest first, unacknowledged
+  std::uint16_t next_report_id_ = 0;
+  std::uint16_t next_sequence_ = 0;
+  std::optional<HandledRequest> last_request_;
+  Nanos transmitting_until_{0};  // end of the latest burst handed out
+  VehicleEndpointStats stats_;
+};
+
+}  // namespace fireswarm::radio

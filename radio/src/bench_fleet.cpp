@@ -1,0 +1,190 @@
+#include "bench_fleet.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace fireswarm::radio::internal {
+namespace {
+
+// Where the bench fleet flies: only the size of the frames matters to the link.
+constexpr double kBaseLatDeg = 45.0;
+constexpr double kBaseLonDeg = 7.0;
+constexpr double kVehicleSpacingDeg = 1e-3;
+constexpr double kAltitudeM = 120.0;
+constexpr double kSpeedMps = 15.0;
+constexpr double kBatteryV = 15.8;
+constexpr std::uint8_t kBatteryPercent = 80;
+constexpr double kReportSigmaM = 5.0;
+constexpr double kPeakTemperatureC = 450.0;
+constexpr double kConfidence = 0.9;
+constexpr std::uint16_t kPixelCount = 12;
+constexpr std::uint16_t kMissionId = 1;
+constexpr std::int64_t kNanosPerMilli = 1'000'000;
+
+std::uint32_t Millis(Nanos t) {
+  return static_cast<std::uint32_t>(t.count() / kNanosPerMilli);
+}
+
+double LatOf(std::uint8_t id) {
+  return kBaseLatDeg + kVehicleSpacingDeg * id;
+}
+
+// Nearest-rank percentile of `values` (p in (0, 1]); 0 for none.
+double Percentile(std::vector<double> values, double p) {
+  if (values.empty()) return 0.0;
+  std::sort(values.begin(), values.end());
+  const auto rank = static_cast<std::size_t>(std::ceil(p * static_cast<double>(values.size())));
+  return values[std::clamp<std::size_t>(rank, 1, values.size()) - 1];
+}
+
+double Max(const std::vector<double>& values) {
+  return values.empty() ? 0.0 : *std::max_element(values.begin(), values.end());
+}
+
+}  // namespace
+
+CommandResult BenchHandler::OnCommand(const Command& /*command*/) {
+  return CommandResult::kAccepted;
+}
+
+MissionAckStatus BenchHandler::OnMissionChunk(const MissionChunk& chunk) {
+  if (chunk.chunk_index >= chunk.chunk_count) return MissionAckStatus::kRejected;
+  chunks_stored_.resize(chunk.chunk_count, false);
+  chunks_stored_[chunk.chunk_index] = true;
+  const bool complete =
+      std::all_of(chunks_stored_.begin(), chunks_stored_.end(), [](bool stored) { return stored; });
+  return complete ? MissionAckStatus::kComplete : MissionAckStatus::kAccepted;
+}
+
+ParamValue BenchHandler::OnParamRead(const ParamRead& read) {
+  return ParamValue{{}, read.param_id, 0.0F, ParamStatus::kUnknownParam};
+}
+
+ParamValue BenchHandler::OnParamWrite(const ParamWrite& write) {
+  return ParamValue{{}, write.param_id, write.value, ParamStatus::kOk};
+}
+
+Telemetry SampleTelemetry(std::uint8_t id, Nanos now) {
+  Telemetry t;
+  t.time_ms = Millis(now);
+  t.lat_deg = LatOf(id);
+  t.lon_deg = kBaseLonDeg;
+  t.altitude_m = kAltitudeM;
+  t.velocity_north_mps = kSpeedMps;
+  t.battery_v = kBatteryV;
+  t.battery_percent = kBatteryPercent;
+  t.mode = FlightMode::kSearch;
+  t.flags = telemetry_flags::kGpsFix | telemetry_flags::kMissionValid;
+  return t;
+}
+
+FireReport SampleReport(std::uint8_t id, Nanos now) {
+  FireReport r;
+  r.time_ms = Millis(now);
+  r.lat_deg = LatOf(id) + kVehicleSpacingDeg / 2;
+  r.lon_deg = kBaseLonDeg;
+  r.sigma_north_m = kReportSigmaM;
+  r.sigma_east_m = kReportSigmaM;
+  r.observer_lat_deg = LatOf(id);
+  r.observer_lon_deg = kBaseLonDeg;
+  r.observer_altitude_m = kAltitudeM;
+  r.pixel_count = kPixelCount;
+  r.peak_temperature_c = kPeakTemperatureC;
+  r.confidence = kConfidence;
+  return r;
+}
+
+void QueueMission(MasterScheduler& server, BenchVehicle& vehicle, int waypoints) {
+  const auto total = static_cast<std::size_t>(waypoints);
+  const std::size_t chunks = (total + kMaxWaypointsPerChunk - 1) / kMaxWaypointsPerChunk;
+  const std::uint8_t id = vehicle.endpoint.config().id;
+  for (std::size_t c = 0; c < chunks; ++c) {
+    MissionChunk chunk;
+    chunk.mission_id = kMissionId;
+    chunk.chunk_index = static_cast<std::uint8_t>(c);
+    chunk.chunk_count = static_cast<std::uint8_t>(chunks);
+    chunk.total_waypoints = static_cast<std::uint16_t>(total);
+    const std::size_t first = c * kMaxWaypointsPerChunk;
+    chunk.first_waypoint = static_cast<std::uint16_t>(first);
+    chunk.waypoint_count =
+        static_cast<std::uint8_t>(std::min(kMaxWaypointsPerChunk, total - first));
+    for (std::size_t w = 0; w < chunk.waypoint_count; ++w) {
+      chunk.waypoints[w] = Waypoint{LatOf(id) + kVehicleSpacingDeg * static_cast<double>(w),
+                                    kBaseLonDeg, kAltitudeM, kSpeedMps, 0};
+    }
+    server.SendMissionChunk(id, chunk);
+  }
+  vehicle.chunks_left = static_cast<int>(chunks);
+}
+
+void Record(const SchedulerEvent& event, Nanos generation_end, Fleet& fleet, Metrics& metrics) {
+  if (const auto* telemetry = std::get_if<TelemetryReceived>(&event)) {
+    BenchVehicle& v = *fleet.at(telemetry->vehicle - 1U);
+    if (telemetry->received <= generation_end) ++v.telemetry_received;
+    v.latest_sample = std::chrono::milliseconds(telemetry->telemetry.time_ms);
+  } else if (const auto* report = std::get_if<FireReportReceived>(&event)) {
+    const BenchVehicle& v = *fleet.at(report->vehicle - 1U);
+    ++metrics.reports_received;
+    const Nanos generated = v.report_generated.at(report->report.report_id);
+    metrics.report_latencies_s.push_back(ToSeconds(report->received - generated));
+  } else if (const auto* finished = std::get_if<RequestFinished>(&event)) {
+    BenchVehicle& v = *fleet.at(finished->vehicle - 1U);
+    if (v.chunks_left == 0) return;
+    if (finished->status == RequestStatus::kFailed) {
+      metrics.mission_failed = true;
+      v.chunks_left = 0;
+    } else {
+      --v.chunks_left;
+    }
+    if (v.chunks_left == 0) {
+      --metrics.missions_pending;
+      metrics.mission_done = std::max(metrics.mission_done, finished->finished);
+    }
+  }
+}
+
+RadioBenchResult Figures(const RadioBenchConfig& config, const Snapshot& snapshot,
+                         const Metrics& metrics, const MasterScheduler& server,
+                         const SharedChannel& channel, const Fleet& fleet, Nanos end) {
+  RadioBenchResult r;
+  const double window_s = config.seconds;
+  r.sim_seconds = ToSeconds(end);
+  r.busy_fraction = ToSeconds(snapshot.busy) / window_s;
+  r.payload_bytes_per_s = static_cast<double>(snapshot.payload_bytes) / window_s;
+  double rate_sum = 0.0;
+  r.telemetry_hz_min = std::numeric_limits<double>::infinity();
+  for (const auto& v : fleet) {
+    const double rate = static_cast<double>(v->telemetry_received) / window_s;
+    r.telemetry_hz_min = std::min(r.telemetry_hz_min, rate);
+    rate_sum += rate;
+  }
+  r.telemetry_hz_mean = rate_sum / static_cast<double>(fleet.size());
+  r.telemetry_age_p50_s = Percentile(metrics.ages_s, 0.5);
+  r.telemetry_age_p99_s = Percentile(metrics.ages_s, 0.99);
+  r.telemetry_age_max_s = Max(metrics.ages_s);
+  r.report_latency_p50_s = Percentile(metrics.report_latencies_s, 0.5);
+  r.report_latency_p99_s = Percentile(metrics.report_latencies_s, 0.99);
+  r.report_latency_max_s = Max(metrics.report_latencies_s);
+  r.reports_sent = metrics.reports_sent;
+  r.reports_received = metrics.reports_received;
+  r.reports_lost = metrics.reports_sent - metrics.reports_received;
+  const SchedulerStats& s = server.stats();
+  r.duplicate_reports = s.duplicate_reports;
+  r.transmissions = channel.stats().transmissions;
+  r.collisions = channel.stats().collisions;
+  r.retries = s.retries;
+  r.missed_replies = s.missed_replies;
+  r.bursts = s.bursts;
+  r.slots_granted = s.slots_granted;
+  r.requests_completed = s.requests_completed;
+  r.requests_failed = s.requests_failed;
+  r.checksum_errors = server.parser_stats().checksum_errors;
+  for (const auto& v : fleet) r.checksum_errors += v->endpoint.parser_stats().checksum_errors;
+  if (config.mission_waypoints > 0 && !metrics.mission_failed && metrics.missions_pending == 0) {
+    r.mission_upload_s = ToSeconds(metrics.mission_done);
+  }
+  return r;
+}
+
+}  // namespace fireswarm::radio::internal

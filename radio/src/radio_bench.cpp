@@ -1,0 +1,228 @@
+// The radio bench loop: advance simulated time to the next event (a server wakeup,
+// the end of a transmission, a fire report, an age sample), deliver what the channel
+// resolved, step the cores, and put their bursts on the air.
+#include "fireswarm/radio/radio_bench.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <random>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "bench_fleet.hpp"
+#include "fireswarm/radio/channel.hpp"
+#include "fireswarm/radio/link.hpp"
+#include "fireswarm/radio/master_scheduler.hpp"
+
+namespace fireswarm::radio {
+namespace {
+
+using internal::BenchVehicle;
+
+constexpr Nanos kAgeSamplePeriod = std::chrono::milliseconds(100);
+constexpr double kSecondsPerMinute = 60.0;
+constexpr double kNanosPerSecond = 1e9;
+// Report arrivals draw from their own generator, decorrelated from the channel's.
+constexpr std::uint64_t kReportSeedSalt = 0x9E37'79B9'7F4A'7C15ULL;
+constexpr int kMaxVehicles = 254;
+
+Nanos FromSeconds(double seconds) {
+  return Nanos{static_cast<std::int64_t>(std::llround(seconds * kNanosPerSecond))};
+}
+
+[[noreturn]] void ThrowConfig(const std::string& field, const std::string& requirement) {
+  throw std::invalid_argument("RadioBenchConfig." + field + " must be " + requirement);
+}
+
+class Bench {
+ public:
+  explicit Bench(const RadioBenchConfig& config)
+      : config_(config),
+        generation_end_(FromSeconds(config.seconds)),
+        hard_end_(generation_end_ + FromSeconds(config.drain_seconds)),
+        channel_(ChannelConfigFor(config), config.seed),
+        server_link_(channel_, channel_.AddRadio()),
+        server_(SchedulerConfigFor(config)),
+        report_rng_(config.seed ^ kReportSeedSalt) {
+    const Nanos period = FromSeconds(1.0 / config.telemetry_hz);
+    for (int i = 0; i < config.vehicles; ++i) {
+      const auto id = static_cast<std::uint8_t>(i + 1);
+      fleet_.push_back(std::make_unique<BenchVehicle>(channel_, EndpointConfigFor(config, id)));
+      // Staggered first turns spread the telemetry load over the period.
+      server_.AddVehicle(id, config.telemetry_hz, period * i / config.vehicles);
+      fleet_.back()->next_report =
+          generation_end_ > Nanos{0} ? NextArrival(Nanos{0}) : Nanos::max();
+    }
+    if (config.mission_waypoints > 0) {
+      for (auto& v : fleet_) {
+        internal::QueueMission(server_, *v, config.mission_waypoints);
+        ++metrics_.missions_pending;
+      }
+    }
+  }
+
+  void ObserveAir(const AirObserver& observer) { channel_.SetAirObserver(observer); }
+
+  RadioBenchResult Run() {
+    Nanos t{0};
+    while (!Finished(t)) {
+      t = NextEventTime();
+      channel_.AdvanceTo(t);
+      if (t == generation_end_) SnapshotGenerationEnd();
+      StepServer(t);
+      StepVehicles(t);
+      GenerateReports(t);
+      if (t == next_sample_) SampleAges(t);
+    }
+    if (!snapshot_) SnapshotGenerationEnd();
+    return internal::Figures(config_, *snapshot_, metrics_, server_, channel_, fleet_, t);
+  }
+
+ private:
+  static ChannelConfig ChannelConfigFor(const RadioBenchConfig& config) {
+    ChannelConfig c;
+    c.baud = config.baud;
+    c.turnaround = config.turnaround;
+    c.loss = config.loss;
+    c.bit_error_rate = config.bit_error_rate;
+    return c;
+  }
+
+  static SchedulerConfig SchedulerConfigFor(const RadioBenchConfig& config) {
+    SchedulerConfig s;
+    s.mode = config.mode;
+    s.checksum = config.checksum;
+    s.timing = LinkTiming{config.baud, kBitsPerByte8N1, config.turnaround};
+    s.default_telemetry_hz = config.telemetry_hz;
+    return s;
+  }
+
+  static VehicleEndpointConfig EndpointConfigFor(const RadioBenchConfig& config, std::uint8_t id) {
+    VehicleEndpointConfig e;
+    e.id = id;
+    e.mode = config.mode;
+    e.checksum = config.checksum;
+    e.timing = LinkTiming{config.baud, kBitsPerByte8N1, config.turnaround};
+    return e;
+  }
+
+  // Poisson arrivals: exponential gaps, by inversion of a uniform draw written out
+  // so the sequence does not depend on the standard library's distributions.
+  Nanos NextArrival(Nanos after) {
+    constexpr double kTwoToMinus53 = 0x1.0p-53;
+    const double uniform = static_cast<double>(report_rng_() >> 11U) * kTwoToMinus53;
+    const double rate_hz = config_.reports_per_minute / kSecondsPerMinute;
+    if (rate_hz <= 0.0) return Nanos::max();
+    return after + FromSeconds(-std::log1p(-uniform) / rate_hz);
+  }
+
+  bool Finished(Nanos t) const {
+    if (t >= hard_end_) return true;
+    if (t < generation_end_) return false;
+    return metrics_.reports_received == metrics_.reports_sent && metrics_.missions_pending == 0;
+  }
+
+  Nanos NextEventTime() const {
+    Nanos next = std::min(server_.NextWakeup(), channel_.NextEventTime().value_or(Nanos::max()));
+    for (const auto& v : fleet_) next = std::min(next, v->next_report);
+    if (!snapshot_) next = std::min(next, generation_end_);
+    if (next_sample_ <= generation_end_) next = std::min(next, next_sample_);
+    return std::min(next, hard_end_);
+  }
+
+  void StepServer(Nanos t) {
+    received_.clear();
+    server_link_.Receive(t, received_);
+    if (received_.empty() && t < server_.NextWakeup()) return;
+    for (const Burst& burst : server_.Step(t, received_)) {
+      server_link_.Transmit(t, burst.start, burst.bytes);
+    }
+    for (const SchedulerEvent& event : server_.TakeEvents()) {
+      internal::Record(event, generation_end_, fleet_, metrics_);
+    }
+  }
+
+  void StepVehicles(Nanos t) {
+    for (auto& v : fleet_) {
+      received_.clear();
+      v->link.Receive(t, received_);
+      if (received_.empty()) continue;
+      // The vehicle samples its state when it hears the channel: the telemetry it
+      // sends in a turn is as fresh as the burst that gave the turn.
+      v->endpoint.SetTelemetry(internal::SampleTelemetry(v->endpoint.config().id, t));
+      for (const Burst& burst : v->endpoint.OnReceive(t, received_)) {
+        v->link.Transmit(t, burst.start, burst.bytes);
+      }
+    }
+  }
+
+  void GenerateReports(Nanos t) {
+    for (auto& v : fleet_) {
+      while (v->next_report <= t) {
+        v->report_generated.push_back(v->next_report);
+        v->endpoint.QueueFireReport(internal::SampleReport(v->endpoint.config().id, t));
+        ++metrics_.reports_sent;
+        const Nanos next = NextArrival(v->next_report);
+        v->next_report = next < generation_end_ ? next : Nanos::max();
+      }
+    }
+  }
+
+  void SampleAges(Nanos t) {
+    for (const auto& v : fleet_) {
+      if (v->latest_sample) metrics_.ages_s.push_back(ToSeconds(t - *v->latest_sample));
+    }
+    next_sample_ += kAgeSamplePeriod;
+  }
+
+  void SnapshotGenerationEnd() {
+    internal::Snapshot s;
+    s.busy = channel_.stats().busy;
+    s.payload_bytes = server_.stats().payload_bytes;
+    for (const auto& v : fleet_) s.payload_bytes += v->endpoint.stats().payload_bytes_for_me;
+    snapshot_ = s;
+  }
+
+  RadioBenchConfig config_;
+  Nanos generation_end_;
+  Nanos hard_end_;
+  SharedChannel channel_;
+  SimLink server_link_;
+  MasterScheduler server_;
+  std::mt19937_64 report_rng_;
+  std::vector<std::unique_ptr<BenchVehicle>> fleet_;
+  internal::Metrics metrics_;
+  std::optional<internal::Snapshot> snapshot_;
+  Nanos next_sample_{0};
+  std::vector<std::uint8_t> received_;
+};
+
+}  // namespace
+
+void RadioBenchConfig::Validate() const {
+  if (vehicles < 1 || vehicles > kMaxVehicles) ThrowConfig("vehicles", "in 1..254");
+  if (!(std::isfinite(seconds) && seconds > 0.0)) ThrowConfig("seconds", "> 0");
+  if (!(std::isfinite(drain_seconds) && drain_seconds >= 0.0)) ThrowConfig("drain_seconds", ">= 0");
+  if (baud <= 0) ThrowConfig("baud", "> 0");
+  if (turnaround < Nanos::zero()) ThrowConfig("turnaround", ">= 0");
+  if (!(loss >= 0.0 && loss < 1.0)) ThrowConfig("loss", "in [0, 1)");
+  if (!(bit_error_rate >= 0.0 && bit_error_rate < 1.0)) ThrowConfig("bit_error_rate", "in [0, 1)");
+  if (!(std::isfinite(reports_per_minute) && reports_per_minute >= 0.0)) {
+    ThrowConfig("reports_per_minute", ">= 0");
+  }
+  if (!(std::isfinite(telemetry_hz) && telemetry_hz > 0.0)) ThrowConfig("telemetry_hz", "> 0");
+  if (mission_waypoints < 0 || mission_waypoints > internal::kMaxMissionWaypoints) {
+    ThrowConfig("mission_waypoints", "in 0.." + std::to_string(internal::kMaxMissionWaypoints));
+  }
+}
+
+RadioBenchResult RunRadioBench(const RadioBenchConfig& config, const AirObserver& observer) {
+  config.Validate();
+  Bench bench(config);
+  if (observer) bench.ObserveAir(observer);
+  return bench.Run();
+}
+
+}  // namespace fireswarm::radio
