@@ -1,0 +1,108 @@
+#include "air_capture.hpp"
+
+#include <lcm/lcm-cpp.hpp>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <stdexcept>
+#include <vector>
+
+#include "fireswarm/radio_frame_t.hpp"
+
+namespace fireswarm::app {
+namespace {
+
+constexpr std::int64_t kNanosPerMicro = 1'000;
+
+std::string PartialPath(const std::string& path) { return path + ".partial"; }
+
+std::int64_t Micros(radio::Nanos t) { return t.count() / kNanosPerMicro; }
+
+void MoveIntoPlace(const std::string& path) {
+  if (std::rename(PartialPath(path).c_str(), path.c_str()) != 0) {
+    throw std::runtime_error("cannot move " + PartialPath(path) + " to " + path + ": " +
+                             std::strerror(errno));
+  }
+}
+
+}  // namespace
+
+struct AirCapture::Files {
+  std::optional<std::string> raw_path;
+  std::optional<std::string> lcm_log_path;
+  std::ofstream raw;
+  std::unique_ptr<lcm::LogFile> log;
+  std::vector<std::uint8_t> encoded;  // reused for every event
+  bool committed = false;
+};
+
+AirCapture::AirCapture(std::optional<std::string> raw_path,
+                       std::optional<std::string> lcm_log_path)
+    : files_(std::make_unique<Files>()) {
+  files_->raw_path = std::move(raw_path);
+  files_->lcm_log_path = std::move(lcm_log_path);
+  if (files_->raw_path) {
+    files_->raw.open(PartialPath(*files_->raw_path), std::ios::binary | std::ios::trunc);
+    if (!files_->raw) throw std::runtime_error("cannot write capture " + *files_->raw_path);
+  }
+  if (files_->lcm_log_path) {
+    files_->log = std::make_unique<lcm::LogFile>(PartialPath(*files_->lcm_log_path), "w");
+    if (!files_->log->good()) throw std::runtime_error("cannot write LCM log " + *files_->lcm_log_path);
+  }
+}
+
+AirCapture::~AirCapture() {
+  if (files_->committed) return;
+  // A run that did not finish leaves no partial files behind.
+  files_->raw.close();
+  files_->log.reset();
+  if (files_->raw_path) std::remove(PartialPath(*files_->raw_path).c_str());
+  if (files_->lcm_log_path) std::remove(PartialPath(*files_->lcm_log_path).c_str());
+}
+
+void AirCapture::Record(const radio::AirRecord& record) {
+  if (files_->raw_path && !record.collided) {
+    files_->raw.write(reinterpret_cast<const char*>(record.bytes.data()),
+                      static_cast<std::streamsize>(record.bytes.size()));
+  }
+  if (!files_->log) return;
+  radio_frame_t frame{};
+  frame.utime = Micros(record.start);
+  frame.transmitter_radio = static_cast<std::int32_t>(record.transmitter);
+  // In a bench or scenario run, radio 0 is the server and radio i the vehicle with ID i.
+  frame.transmitter_receiver_id = static_cast<std::int16_t>(record.transmitter);
+  frame.start_us = Micros(record.start);
+  frame.end_us = Micros(record.end);
+  frame.collided = record.collided;
+  frame.byte_count = static_cast<std::int32_t>(record.bytes.size());
+  frame.bytes.assign(record.bytes.begin(), record.bytes.end());
+  files_->encoded.resize(static_cast<std::size_t>(frame.getEncodedSize()));
+  frame.encode(files_->encoded.data(), 0, static_cast<int>(files_->encoded.size()));
+
+  lcm::LogEvent event{};
+  event.eventnum = 0;  // assigned by the log writer
+  event.timestamp = frame.utime;
+  event.channel = kAirLcmChannel;
+  event.datalen = static_cast<std::int32_t>(files_->encoded.size());
+  event.data = files_->encoded.data();
+  if (files_->log->writeEvent(&event) != 0) {
+    throw std::runtime_error("cannot write LCM log " + *files_->lcm_log_path);
+  }
+}
+
+void AirCapture::Commit() {
+  if (files_->raw_path) {
+    files_->raw.close();
+    if (!files_->raw) throw std::runtime_error("cannot finish capture " + *files_->raw_path);
+    MoveIntoPlace(*files_->raw_path);
+  }
+  if (files_->lcm_log_path) {
+    files_->log.reset();  // closes the file
+    MoveIntoPlace(*files_->lcm_log_path);
+  }
+  files_->committed = true;
+}
+
+}  // namespace fireswarm::app
