@@ -17,7 +17,12 @@ endif()
 
 if(FIRESWARM_SANITIZE)
   # Applied globally so every object, test and the executable share one runtime.
-  add_compile_options(-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all)
+  # All of UBSan except -fsanitize=vptr: with GCC 12 it makes LCM 1.3.1's own C++
+  # subscription callback (lcm-cpp-impl.hpp, cb_func) see a bogus object and crash,
+  # reproduced by a 12-line program that subscribes and publishes on memq:// with no
+  # fireswarm code; every other check passes on that program.
+  add_compile_options(-fsanitize=address,undefined -fno-sanitize=vptr -fno-omit-frame-pointer
+                      -fno-sanitize-recover=all)
   add_link_options(-fsanitize=address,undefined)
 endif()
 

@@ -69,7 +69,9 @@ void AirCapture::Record(const radio::AirRecord& record) {
   }
   if (!files_->log) return;
   radio_frame_t frame{};
-  frame.utime = Micros(record.start);
+  // Stamped with the end of the transmission, when receivers have it: records arrive
+  // in order of end, so the log's timestamps never go backwards (lcm-logplayer needs that).
+  frame.utime = Micros(record.end);
   frame.transmitter_radio = static_cast<std::int32_t>(record.transmitter);
   // In a bench or scenario run, radio 0 is the server and radio i the vehicle with ID i.
   frame.transmitter_receiver_id = static_cast<std::int16_t>(record.transmitter);

@@ -4,7 +4,7 @@
 //    collision, in the order they ended (what a receiver that hears everything
 //    without loss gets); `fireswarm radio-decode` reads it;
 //  - an LCM log: one fireswarm.radio_frame_t event per transmission (collided ones
-//    too, flagged) on channel RADIO_AIR, timestamped with the simulated start time.
+//    too, flagged) on channel RADIO_AIR, timestamped with the simulated end time.
 // Files are written beside their final path and renamed into place by Commit(), so
 // a run that fails leaves nothing half-written.
 #pragma once

@@ -1,0 +1,44 @@
+// Runs the real `fireswarm` executable for the end-to-end tests in tests/app/.
+// The test suite sets FIRESWARM_BIN to build/bin/fireswarm.
+#pragma once
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+namespace fireswarm::app {
+
+struct RunResult {
+  int exit_code = -1;
+  std::vector<std::string> lines;  // stdout and stderr, line by line
+};
+
+// Runs `fireswarm <arguments>` through the shell and collects its output.
+inline RunResult RunFireswarm(const std::string& arguments) {
+  const char* binary = std::getenv("FIRESWARM_BIN");
+  if (binary == nullptr) ADD_FAILURE() << "FIRESWARM_BIN is not set (ctest sets it)";
+  const std::string command =
+      std::string("'") + (binary ? binary : "fireswarm") + "' " + arguments + " 2>&1";
+  RunResult result;
+  std::FILE* pipe = popen(command.c_str(), "r");
+  if (pipe == nullptr) return result;
+  std::string line;
+  for (int c = std::fgetc(pipe); c != EOF; c = std::fgetc(pipe)) {
+    if (c == '\n') {
+      result.lines.push_back(line);
+      line.clear();
+    } else {
+      line.push_back(static_cast<char>(c));
+    }
+  }
+  if (!line.empty()) result.lines.push_back(line);
+  const int status = pclose(pipe);
+  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return result;
+}
+
+}  // namespace fireswarm::app
