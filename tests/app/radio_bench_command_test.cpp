@@ -23,18 +23,8 @@ using Json = nlohmann::json;
 constexpr const char* kSmallRun = "radio-bench --vehicles 6 --seconds 20 --loss 0.05";
 constexpr int kSeed = 7;
 
-class RadioBenchCommand : public ::testing::Test {
+class RadioBenchCommand : public CommandTest {
  protected:
-  void SetUp() override {
-    const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() /
-           ("fireswarm_radio_bench_" + std::to_string(getpid()) + "_" + test->name());
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  std::string PathOf(const std::string& name) const { return (dir_ / name).string(); }
-
   // Runs the small bench with --json and returns its one JSON object.
   Json RunJson(const std::string& extra, int seed = kSeed) {
     const RunResult run = RunFireswarm(std::string(kSmallRun) + " --json --seed " +
@@ -46,8 +36,6 @@ class RadioBenchCommand : public ::testing::Test {
     }
     return Json::parse(run.lines[0]);
   }
-
-  fs::path dir_;
 };
 
 std::string ReadFile(const std::string& path) {

@@ -22,16 +22,8 @@ namespace fs = std::filesystem;
 using Bytes = std::vector<std::uint8_t>;
 using Json = nlohmann::json;
 
-class RadioDecodeCommand : public ::testing::Test {
+class RadioDecodeCommand : public CommandTest {
  protected:
-  void SetUp() override {
-    const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() /
-           ("fireswarm_radio_decode_" + std::to_string(getpid()) + "_" + test->name());
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
   std::string WriteCapture(const std::string& name, const Bytes& bytes) const {
     const fs::path path = dir_ / name;
     std::ofstream(path, std::ios::binary)
@@ -39,8 +31,6 @@ class RadioDecodeCommand : public ::testing::Test {
                static_cast<std::streamsize>(bytes.size()));
     return path.string();
   }
-
-  fs::path dir_;
 };
 
 radio::Telemetry SampleTelemetry() {
