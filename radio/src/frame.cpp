@@ -46,7 +46,8 @@ void AppendFrame(std::vector<std::uint8_t>& out, std::uint8_t receiver, std::uin
                                 " bytes exceeds the frame's maximum of 255");
   }
   const std::size_t start = out.size();
-  out.reserve(start + FrameSize(data.size(), mode));
+  // No exact reserve(start + frame size) here: it would defeat the vector's geometric
+  // growth and make appending many frames to one buffer quadratic.
   out.insert(out.end(), kPreamble.begin(), kPreamble.end());
   out.push_back(receiver);
   out.push_back(message_id);

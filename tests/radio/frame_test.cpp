@@ -78,6 +78,22 @@ TEST(AppendFrame, AppendsAfterExistingBytesAndChecksumSkipsPreamble) {
   EXPECT_EQ(out, expected);
 }
 
+// Regression: an exact reserve() per frame reallocated the buffer on every append,
+// so building a long capture or burst was quadratic.
+TEST(AppendFrame, ManyAppendsGrowTheBufferGeometrically) {
+  constexpr int kFrames = 20'000;
+  const Bytes data(41, 0x5A);
+  Bytes out;
+  int reallocations = 0;
+  for (int i = 0; i < kFrames; ++i) {
+    const std::size_t capacity = out.capacity();
+    AppendFrame(out, 1, 0x10, data, ChecksumMode::kCrc16);
+    if (out.capacity() != capacity) ++reallocations;
+  }
+  EXPECT_EQ(out.size(), kFrames * FrameSize(data.size(), ChecksumMode::kCrc16));
+  EXPECT_LT(reallocations, 40) << "one reallocation per append is quadratic";
+}
+
 TEST(AppendFrame, AcceptsMaximalDataAndRejectsLonger) {
   Bytes out;
   AppendFrame(out, 1, 2, Bytes(kMaxDataSize, 0xAB), ChecksumMode::kCrc16);
