@@ -1,11 +1,10 @@
 #include "air_capture.hpp"
 
-#include <lcm/lcm-cpp.hpp>
-
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <lcm/lcm-cpp.hpp>
 #include <stdexcept>
 #include <vector>
 
@@ -16,9 +15,13 @@ namespace {
 
 constexpr std::int64_t kNanosPerMicro = 1'000;
 
-std::string PartialPath(const std::string& path) { return path + ".partial"; }
+std::string PartialPath(const std::string& path) {
+  return path + ".partial";
+}
 
-std::int64_t Micros(radio::Nanos t) { return t.count() / kNanosPerMicro; }
+std::int64_t Micros(radio::Nanos t) {
+  return t.count() / kNanosPerMicro;
+}
 
 void MoveIntoPlace(const std::string& path) {
   if (std::rename(PartialPath(path).c_str(), path.c_str()) != 0) {
@@ -38,8 +41,7 @@ struct AirCapture::Files {
   bool committed = false;
 };
 
-AirCapture::AirCapture(std::optional<std::string> raw_path,
-                       std::optional<std::string> lcm_log_path)
+AirCapture::AirCapture(std::optional<std::string> raw_path, std::optional<std::string> lcm_log_path)
     : files_(std::make_unique<Files>()) {
   files_->raw_path = std::move(raw_path);
   files_->lcm_log_path = std::move(lcm_log_path);
@@ -49,7 +51,8 @@ AirCapture::AirCapture(std::optional<std::string> raw_path,
   }
   if (files_->lcm_log_path) {
     files_->log = std::make_unique<lcm::LogFile>(PartialPath(*files_->lcm_log_path), "w");
-    if (!files_->log->good()) throw std::runtime_error("cannot write LCM log " + *files_->lcm_log_path);
+    if (!files_->log->good())
+      throw std::runtime_error("cannot write LCM log " + *files_->lcm_log_path);
   }
 }
 

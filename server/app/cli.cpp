@@ -15,7 +15,8 @@ bool ParseCommandLine(const std::string& command_name, const std::string& usage_
   try {
     po::store(po::command_line_parser(args).options(all).positional(positional).run(), values);
     if (values.count("help") != 0U) {
-      std::cout << "usage: fireswarm " << command_name << " " << usage_line << "\n\n" << all << "\n";
+      std::cout << "usage: fireswarm " << command_name << " " << usage_line << "\n\n"
+                << all << "\n";
       return false;
     }
     po::notify(values);

@@ -12,7 +12,6 @@
 #include <vector>
 
 #include "cli.hpp"
-
 #include "commands.hpp"
 #include "fireswarm/radio/messages.hpp"
 #include "fireswarm/radio/parser.hpp"

@@ -28,7 +28,9 @@ inline constexpr std::size_t kMaxDataSize = 255;
 enum class ChecksumMode : std::uint8_t { kXor, kCrc16 };
 
 /// Bytes of checksum after the data: 1 (XOR) or 2 (CRC-16).
-constexpr std::size_t ChecksumSize(ChecksumMode mode) { return mode == ChecksumMode::kXor ? 1 : 2; }
+constexpr std::size_t ChecksumSize(ChecksumMode mode) {
+  return mode == ChecksumMode::kXor ? 1 : 2;
+}
 
 /// Bytes a frame with `data_size` data bytes occupies on the air.
 constexpr std::size_t FrameSize(std::size_t data_size, ChecksumMode mode) {

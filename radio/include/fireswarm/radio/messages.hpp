@@ -84,8 +84,14 @@ struct SlotSchedule {
 };
 
 enum class FlightMode : std::uint8_t {
-  kIdle = 0, kTakeoff = 1, kSearch = 2, kInvestigate = 3, kReturnToLaunch = 4,
-  kLand = 5, kLanded = 6, kHold = 7,
+  kIdle = 0,
+  kTakeoff = 1,
+  kSearch = 2,
+  kInvestigate = 3,
+  kReturnToLaunch = 4,
+  kLand = 5,
+  kLanded = 6,
+  kHold = 7,
 };
 
 /// Telemetry flag bits.
@@ -93,7 +99,7 @@ namespace telemetry_flags {
 inline constexpr std::uint8_t kReportPending = 1U << 0;  ///< a fire report waits for a turn
 inline constexpr std::uint8_t kMissionValid = 1U << 1;   ///< a complete mission is stored
 inline constexpr std::uint8_t kLowBattery = 1U << 2;
-inline constexpr std::uint8_t kLinkLost = 1U << 3;       ///< returning: server not heard
+inline constexpr std::uint8_t kLinkLost = 1U << 3;  ///< returning: server not heard
 inline constexpr std::uint8_t kGpsFix = 1U << 4;
 }  // namespace telemetry_flags
 
@@ -112,8 +118,8 @@ struct Telemetry {
   double battery_v = 0.0;           ///< wire: u16 mV
   std::uint8_t battery_percent = 0;
   FlightMode mode = FlightMode::kIdle;
-  std::uint8_t flags = 0;           ///< telemetry_flags
-  std::uint8_t pending_reports = 0; ///< fire reports queued, saturating at 255
+  std::uint8_t flags = 0;            ///< telemetry_flags
+  std::uint8_t pending_reports = 0;  ///< fire reports queued, saturating at 255
   std::uint16_t mission_id = 0;
   std::uint16_t waypoint_index = 0;
   friend bool operator==(const Telemetry&, const Telemetry&) = default;
@@ -121,36 +127,36 @@ struct Telemetry {
 
 struct FireReport {
   MessageHeader header;
-  std::uint16_t report_id = 0;      ///< per vehicle; a resend keeps its ID
-  std::uint32_t time_ms = 0;        ///< detection time, vehicle clock
-  double lat_deg = 0.0;             ///< estimated fire position; wire: i32 1e-7 deg
+  std::uint16_t report_id = 0;  ///< per vehicle; a resend keeps its ID
+  std::uint32_t time_ms = 0;    ///< detection time, vehicle clock
+  double lat_deg = 0.0;         ///< estimated fire position; wire: i32 1e-7 deg
   double lon_deg = 0.0;
-  double sigma_north_m = 0.0;       ///< 1-sigma; wire: u16 cm
-  double sigma_east_m = 0.0;        ///< 1-sigma; wire: u16 cm
-  double correlation = 0.0;         ///< north-east correlation in [-1, 1]; wire: i16 1e-4
-  double observer_lat_deg = 0.0;    ///< vehicle position at detection; wire: i32 1e-7 deg
+  double sigma_north_m = 0.0;     ///< 1-sigma; wire: u16 cm
+  double sigma_east_m = 0.0;      ///< 1-sigma; wire: u16 cm
+  double correlation = 0.0;       ///< north-east correlation in [-1, 1]; wire: i16 1e-4
+  double observer_lat_deg = 0.0;  ///< vehicle position at detection; wire: i32 1e-7 deg
   double observer_lon_deg = 0.0;
-  double observer_altitude_m = 0.0; ///< wire: i16 dm
-  std::uint16_t pixel_count = 0;    ///< size of the hot region
-  double peak_temperature_c = 0.0;  ///< wire: i16 0.1 C
-  double confidence = 0.0;          ///< [0, 1]; wire: u8 1/255
+  double observer_altitude_m = 0.0;  ///< wire: i16 dm
+  std::uint16_t pixel_count = 0;     ///< size of the hot region
+  double peak_temperature_c = 0.0;   ///< wire: i16 0.1 C
+  double confidence = 0.0;           ///< [0, 1]; wire: u8 1/255
   friend bool operator==(const FireReport&, const FireReport&) = default;
 };
 
 struct FireReportAck {
   MessageHeader header;
-  std::uint8_t vehicle = 0;         ///< the reporting vehicle
+  std::uint8_t vehicle = 0;  ///< the reporting vehicle
   std::uint16_t report_id = 0;
   friend bool operator==(const FireReportAck&, const FireReportAck&) = default;
 };
 
 /// One mission waypoint on the wire: 12 bytes.
 struct Waypoint {
-  double lat_deg = 0.0;             ///< wire: i32 1e-7 deg
-  double lon_deg = 0.0;             ///< wire: i32 1e-7 deg
-  double altitude_m = 0.0;          ///< above ground; wire: u16 dm
-  double speed_mps = 0.0;           ///< wire: u8 0.1 m/s
-  std::uint8_t flags = 0;           ///< bit 0: start of a search lane
+  double lat_deg = 0.0;     ///< wire: i32 1e-7 deg
+  double lon_deg = 0.0;     ///< wire: i32 1e-7 deg
+  double altitude_m = 0.0;  ///< above ground; wire: u16 dm
+  double speed_mps = 0.0;   ///< wire: u8 0.1 m/s
+  std::uint8_t flags = 0;   ///< bit 0: start of a search lane
   friend bool operator==(const Waypoint&, const Waypoint&) = default;
 };
 
@@ -170,9 +176,9 @@ struct MissionChunk {
 };
 
 enum class MissionAckStatus : std::uint8_t {
-  kAccepted = 0,   ///< chunk stored, more expected
-  kComplete = 1,   ///< every chunk of the mission is stored: it may fly
-  kRejected = 2,   ///< chunk inconsistent with the mission being uploaded
+  kAccepted = 0,  ///< chunk stored, more expected
+  kComplete = 1,  ///< every chunk of the mission is stored: it may fly
+  kRejected = 2,  ///< chunk inconsistent with the mission being uploaded
 };
 
 struct MissionAck {
@@ -184,7 +190,11 @@ struct MissionAck {
 };
 
 enum class CommandType : std::uint8_t {
-  kStartMission = 1, kHold = 2, kResume = 3, kReturnToLaunch = 4, kLand = 5,
+  kStartMission = 1,
+  kHold = 2,
+  kResume = 3,
+  kReturnToLaunch = 4,
+  kLand = 5,
   kInvestigate = 6,  ///< loiter around (lat, lon) at radius, keeping the camera on it
   kAbort = 7,
 };
@@ -192,12 +202,12 @@ enum class CommandType : std::uint8_t {
 struct Command {
   MessageHeader header;
   CommandType type = CommandType::kHold;
-  std::uint16_t mission_id = 0;     ///< for kStartMission
-  double lat_deg = 0.0;             ///< for kInvestigate; wire: i32 1e-7 deg
+  std::uint16_t mission_id = 0;  ///< for kStartMission
+  double lat_deg = 0.0;          ///< for kInvestigate; wire: i32 1e-7 deg
   double lon_deg = 0.0;
-  double altitude_m = 0.0;          ///< wire: u16 dm
-  double radius_m = 0.0;            ///< wire: u16 dm
-  std::uint16_t duration_s = 0;     ///< loiter time; 0 = until told otherwise
+  double altitude_m = 0.0;       ///< wire: u16 dm
+  double radius_m = 0.0;         ///< wire: u16 dm
+  std::uint16_t duration_s = 0;  ///< loiter time; 0 = until told otherwise
   friend bool operator==(const Command&, const Command&) = default;
 };
 
@@ -205,7 +215,7 @@ enum class CommandResult : std::uint8_t { kAccepted = 0, kRejected = 1, kUnsuppo
 
 struct CommandAck {
   MessageHeader header;
-  std::uint16_t acked_sequence = 0; ///< sequence number of the Command
+  std::uint16_t acked_sequence = 0;  ///< sequence number of the Command
   CommandType type = CommandType::kHold;
   CommandResult result = CommandResult::kAccepted;
   friend bool operator==(const CommandAck&, const CommandAck&) = default;
@@ -226,7 +236,12 @@ struct ParamWrite {
   friend bool operator==(const ParamWrite&, const ParamWrite&) = default;
 };
 
-enum class ParamStatus : std::uint8_t { kOk = 0, kUnknownParam = 1, kReadOnly = 2, kOutOfRange = 3 };
+enum class ParamStatus : std::uint8_t {
+  kOk = 0,
+  kUnknownParam = 1,
+  kReadOnly = 2,
+  kOutOfRange = 3
+};
 
 struct ParamValue {
   MessageHeader header;
@@ -244,9 +259,9 @@ struct Heartbeat {
   friend bool operator==(const Heartbeat&, const Heartbeat&) = default;
 };
 
-using Message = std::variant<Poll, SlotSchedule, Telemetry, FireReport, FireReportAck,
-                             MissionChunk, MissionAck, Command, CommandAck, ParamRead,
-                             ParamWrite, ParamValue, Heartbeat>;
+using Message =
+    std::variant<Poll, SlotSchedule, Telemetry, FireReport, FireReportAck, MissionChunk, MissionAck,
+                 Command, CommandAck, ParamRead, ParamWrite, ParamValue, Heartbeat>;
 
 MessageId IdOf(const Message& message);
 const MessageHeader& HeaderOf(const Message& message);

@@ -22,6 +22,8 @@ constexpr Nanos Airtime(std::size_t bytes, int baud, int bits_per_byte = kBitsPe
 }
 
 /// Converts nanoseconds to seconds as a double, for figures and JSON.
-constexpr double ToSeconds(Nanos t) { return static_cast<double>(t.count()) * 1e-9; }
+constexpr double ToSeconds(Nanos t) {
+  return static_cast<double>(t.count()) * 1e-9;
+}
 
 }  // namespace fireswarm::radio
