@@ -21,6 +21,8 @@ constexpr double kConfidence = 0.9;
 constexpr std::uint16_t kPixelCount = 12;
 constexpr std::uint16_t kMissionId = 1;
 constexpr std::int64_t kNanosPerMilli = 1'000'000;
+constexpr double kMedian = 0.5;
+constexpr double kP99 = 0.99;
 
 std::uint32_t Millis(Nanos t) {
   return static_cast<std::uint32_t>(t.count() / kNanosPerMilli);
@@ -154,17 +156,24 @@ RadioBenchResult Figures(const RadioBenchConfig& config, const Snapshot& snapsho
   r.payload_bytes_per_s = static_cast<double>(snapshot.payload_bytes) / window_s;
   double rate_sum = 0.0;
   r.telemetry_hz_min = std::numeric_limits<double>::infinity();
+  std::vector<double> fleet_ages_s;
   for (const auto& v : fleet) {
     const double rate = static_cast<double>(v->telemetry_received) / window_s;
     r.telemetry_hz_min = std::min(r.telemetry_hz_min, rate);
     rate_sum += rate;
+    r.per_vehicle.push_back({.vehicle = v->endpoint.config().id,
+                             .telemetry_hz = rate,
+                             .telemetry_age_p50_s = Percentile(v->ages_s, kMedian),
+                             .telemetry_age_p99_s = Percentile(v->ages_s, kP99),
+                             .reports_sent = v->report_generated.size()});
+    fleet_ages_s.insert(fleet_ages_s.end(), v->ages_s.begin(), v->ages_s.end());
   }
   r.telemetry_hz_mean = rate_sum / static_cast<double>(fleet.size());
-  r.telemetry_age_p50_s = Percentile(metrics.ages_s, 0.5);
-  r.telemetry_age_p99_s = Percentile(metrics.ages_s, 0.99);
-  r.telemetry_age_max_s = Max(metrics.ages_s);
-  r.report_latency_p50_s = Percentile(metrics.report_latencies_s, 0.5);
-  r.report_latency_p99_s = Percentile(metrics.report_latencies_s, 0.99);
+  r.telemetry_age_p50_s = Percentile(fleet_ages_s, kMedian);
+  r.telemetry_age_p99_s = Percentile(fleet_ages_s, kP99);
+  r.telemetry_age_max_s = Max(fleet_ages_s);
+  r.report_latency_p50_s = Percentile(metrics.report_latencies_s, kMedian);
+  r.report_latency_p99_s = Percentile(metrics.report_latencies_s, kP99);
   r.report_latency_max_s = Max(metrics.report_latencies_s);
   r.reports_sent = metrics.reports_sent;
   r.reports_received = metrics.reports_received;

@@ -40,6 +40,7 @@ struct BenchVehicle {
   std::vector<Nanos> report_generated;   // by report_id
   std::uint64_t telemetry_received = 0;  // by the server, during the generation window
   std::optional<Nanos> latest_sample;    // sampling time of its latest telemetry at the server
+  std::vector<double> ages_s;            // telemetry age at the server, every age sample
   int chunks_left = 0;                   // mission chunks not yet acknowledged
 };
 
@@ -49,7 +50,6 @@ struct Metrics {
   std::uint64_t reports_sent = 0;
   std::uint64_t reports_received = 0;
   std::vector<double> report_latencies_s;
-  std::vector<double> ages_s;
   int missions_pending = 0;  // vehicles whose upload is still running
   bool mission_failed = false;
   Nanos mission_done{0};  // when the last upload completed

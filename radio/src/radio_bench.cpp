@@ -172,7 +172,7 @@ class Bench {
 
   void SampleAges(Nanos t) {
     for (const auto& v : fleet_) {
-      if (v->latest_sample) metrics_.ages_s.push_back(ToSeconds(t - *v->latest_sample));
+      if (v->latest_sample) v->ages_s.push_back(ToSeconds(t - *v->latest_sample));
     }
     next_sample_ += kAgeSamplePeriod;
   }

@@ -1,5 +1,6 @@
 // `fireswarm radio-bench`: N vehicles and the server on one simulated half-duplex
 // channel; prints what the link delivers, as a table or one JSON object.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -156,6 +157,15 @@ nlohmann::ordered_json ToJson(const RadioBenchConfig& c, const RadioBenchResult&
   j["mission_waypoints"] = c.mission_waypoints;
   j["mission_upload_s"] = r.mission_upload_s ? nlohmann::ordered_json(*r.mission_upload_s)
                                              : nlohmann::ordered_json(nullptr);
+  nlohmann::ordered_json per_vehicle = nlohmann::ordered_json::array();
+  for (const radio::VehicleLinkFigures& v : r.per_vehicle) {
+    per_vehicle.push_back({{"receiver_id", v.vehicle},
+                           {"telemetry_hz", v.telemetry_hz},
+                           {"telemetry_age_p50_s", v.telemetry_age_p50_s},
+                           {"telemetry_age_p99_s", v.telemetry_age_p99_s},
+                           {"reports_sent", v.reports_sent}});
+  }
+  j["per_vehicle"] = per_vehicle;
   j["wall_seconds"] = wall_seconds;
   return j;
 }
@@ -175,6 +185,15 @@ void PrintTable(const RadioBenchConfig& c, const RadioBenchResult& r, double wal
       Text(r.telemetry_hz_min) + " / " + Text(r.telemetry_hz_mean));
   row("telemetry age p50 / p99 (s)",
       Text(r.telemetry_age_p50_s) + " / " + Text(r.telemetry_age_p99_s));
+  const auto stalest = std::max_element(
+      r.per_vehicle.begin(), r.per_vehicle.end(),
+      [](const auto& a, const auto& b) { return a.telemetry_age_p99_s < b.telemetry_age_p99_s; });
+  if (stalest != r.per_vehicle.end()) {
+    row("stalest vehicle age p50 / p99 (s)", Text(stalest->telemetry_age_p50_s) + " / " +
+                                                 Text(stalest->telemetry_age_p99_s) + " (vehicle " +
+                                                 Text(int{stalest->vehicle}) + ", " +
+                                                 Text(stalest->telemetry_hz) + " Hz)");
+  }
   row("report latency p50 / p99 (s)",
       Text(r.report_latency_p50_s) + " / " + Text(r.report_latency_p99_s));
   row("reports sent / lost", Text(r.reports_sent) + " / " + Text(r.reports_lost));

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -52,6 +53,24 @@ TEST_F(RadioBenchCommand, JsonHasTheFiguresToolsRead) {
   }
   EXPECT_GT(figures["busy_fraction"].get<double>(), 0.0);
   EXPECT_EQ(figures["vehicles"], 6);
+
+  // Per vehicle: one entry per receiver ID, consistent with the fleet figures.
+  const Json& per_vehicle = figures.at("per_vehicle");
+  ASSERT_EQ(per_vehicle.size(), 6U);
+  double slowest_hz = 1e9;
+  double stalest_p99_s = 0.0;
+  std::uint64_t reports = 0;
+  for (std::size_t i = 0; i < per_vehicle.size(); ++i) {
+    EXPECT_EQ(per_vehicle[i]["receiver_id"], i + 1);
+    EXPECT_LE(per_vehicle[i]["telemetry_age_p50_s"].get<double>(),
+              per_vehicle[i]["telemetry_age_p99_s"].get<double>());
+    slowest_hz = std::min(slowest_hz, per_vehicle[i]["telemetry_hz"].get<double>());
+    stalest_p99_s = std::max(stalest_p99_s, per_vehicle[i]["telemetry_age_p99_s"].get<double>());
+    reports += per_vehicle[i]["reports_sent"].get<std::uint64_t>();
+  }
+  EXPECT_DOUBLE_EQ(slowest_hz, figures["telemetry_hz_min"].get<double>());
+  EXPECT_LE(figures["telemetry_age_p99_s"].get<double>(), stalest_p99_s);
+  EXPECT_EQ(reports, figures["reports_sent"].get<std::uint64_t>());
 }
 
 TEST_F(RadioBenchCommand, RawCaptureDecodesWithoutErrors) {

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <functional>
 #include <optional>
+#include <vector>
 
 #include "fireswarm/radio/channel.hpp"
 #include "fireswarm/radio/discipline.hpp"
@@ -31,6 +32,16 @@ struct RadioBenchConfig {
   std::uint64_t seed = 1;
   /// Throws std::invalid_argument naming the field when a value is out of range.
   void Validate() const;
+};
+
+/// One vehicle's link figures. The rate covers [0, seconds]; ages are sampled every
+/// 100 ms as now - sampling time of its latest telemetry at the server.
+struct VehicleLinkFigures {
+  std::uint8_t vehicle = 0;  ///< receiver ID
+  double telemetry_hz = 0.0;
+  double telemetry_age_p50_s = 0.0;
+  double telemetry_age_p99_s = 0.0;
+  std::uint64_t reports_sent = 0;  ///< fire reports it generated
 };
 
 /// Figures of one run. Rates and fractions cover [0, seconds]; latencies, losses and
@@ -63,6 +74,7 @@ struct RadioBenchResult {
   /// Time until every vehicle acknowledged its whole mission; nullopt without a
   /// mission or when an upload failed.
   std::optional<double> mission_upload_s;
+  std::vector<VehicleLinkFigures> per_vehicle;  ///< by receiver ID
 };
 
 /// Called once per transmission as the channel resolves it (a capture of the air).
