@@ -1,6 +1,7 @@
 #include "bench_fleet.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 
@@ -20,12 +21,12 @@ constexpr double kPeakTemperatureC = 450.0;
 constexpr double kConfidence = 0.9;
 constexpr std::uint16_t kPixelCount = 12;
 constexpr std::uint16_t kMissionId = 1;
-constexpr std::int64_t kNanosPerMilli = 1'000'000;
 constexpr double kMedian = 0.5;
 constexpr double kP99 = 0.99;
 
 std::uint32_t Millis(Nanos t) {
-  return static_cast<std::uint32_t>(t.count() / kNanosPerMilli);
+  return static_cast<std::uint32_t>(
+      std::chrono::duration_cast<std::chrono::milliseconds>(t).count());
 }
 
 double LatOf(std::uint8_t id) {

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <memory>
 #include <random>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -23,17 +24,16 @@ using internal::BenchVehicle;
 
 constexpr Nanos kAgeSamplePeriod = std::chrono::milliseconds(100);
 constexpr double kSecondsPerMinute = 60.0;
-constexpr double kNanosPerSecond = 1e9;
 // Report arrivals draw from their own generator, decorrelated from the channel's.
 constexpr std::uint64_t kReportSeedSalt = 0x9E37'79B9'7F4A'7C15ULL;
 constexpr int kMaxVehicles = 254;
 
-Nanos FromSeconds(double seconds) {
-  return Nanos{static_cast<std::int64_t>(std::llround(seconds * kNanosPerSecond))};
-}
-
-[[noreturn]] void ThrowConfig(const std::string& field, const std::string& requirement) {
-  throw std::invalid_argument("RadioBenchConfig." + field + " must be " + requirement);
+template <typename Value>
+[[noreturn]] void ThrowConfig(const std::string& field, const std::string& requirement,
+                              Value value) {
+  std::ostringstream message;
+  message << "RadioBenchConfig." << field << " must be " << requirement << ", got " << value;
+  throw std::invalid_argument(message.str());
 }
 
 class Bench {
@@ -202,19 +202,26 @@ class Bench {
 }  // namespace
 
 void RadioBenchConfig::Validate() const {
-  if (vehicles < 1 || vehicles > kMaxVehicles) ThrowConfig("vehicles", "in 1..254");
-  if (!(std::isfinite(seconds) && seconds > 0.0)) ThrowConfig("seconds", "> 0");
-  if (!(std::isfinite(drain_seconds) && drain_seconds >= 0.0)) ThrowConfig("drain_seconds", ">= 0");
-  if (baud <= 0) ThrowConfig("baud", "> 0");
-  if (turnaround < Nanos::zero()) ThrowConfig("turnaround", ">= 0");
-  if (!(loss >= 0.0 && loss < 1.0)) ThrowConfig("loss", "in [0, 1)");
-  if (!(bit_error_rate >= 0.0 && bit_error_rate < 1.0)) ThrowConfig("bit_error_rate", "in [0, 1)");
-  if (!(std::isfinite(reports_per_minute) && reports_per_minute >= 0.0)) {
-    ThrowConfig("reports_per_minute", ">= 0");
+  if (vehicles < 1 || vehicles > kMaxVehicles) ThrowConfig("vehicles", "in 1..254", vehicles);
+  if (!(std::isfinite(seconds) && seconds > 0.0)) ThrowConfig("seconds", "> 0", seconds);
+  if (!(std::isfinite(drain_seconds) && drain_seconds >= 0.0)) {
+    ThrowConfig("drain_seconds", ">= 0", drain_seconds);
   }
-  if (!(std::isfinite(telemetry_hz) && telemetry_hz > 0.0)) ThrowConfig("telemetry_hz", "> 0");
+  if (baud <= 0) ThrowConfig("baud", "> 0", baud);
+  if (turnaround < Nanos::zero()) ThrowConfig("turnaround", ">= 0 ns", turnaround.count());
+  if (!(loss >= 0.0 && loss < 1.0)) ThrowConfig("loss", "in [0, 1)", loss);
+  if (!(bit_error_rate >= 0.0 && bit_error_rate < 1.0)) {
+    ThrowConfig("bit_error_rate", "in [0, 1)", bit_error_rate);
+  }
+  if (!(std::isfinite(reports_per_minute) && reports_per_minute >= 0.0)) {
+    ThrowConfig("reports_per_minute", ">= 0", reports_per_minute);
+  }
+  if (!(std::isfinite(telemetry_hz) && telemetry_hz > 0.0)) {
+    ThrowConfig("telemetry_hz", "> 0", telemetry_hz);
+  }
   if (mission_waypoints < 0 || mission_waypoints > internal::kMaxMissionWaypoints) {
-    ThrowConfig("mission_waypoints", "in 0.." + std::to_string(internal::kMaxMissionWaypoints));
+    ThrowConfig("mission_waypoints", "in 0.." + std::to_string(internal::kMaxMissionWaypoints),
+                mission_waypoints);
   }
 }
 

@@ -1,6 +1,7 @@
 #include "air_capture.hpp"
 
 #include <cerrno>
+#include <chrono>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -13,14 +14,12 @@
 namespace fireswarm::app {
 namespace {
 
-constexpr std::int64_t kNanosPerMicro = 1'000;
-
 std::string PartialPath(const std::string& path) {
   return path + ".partial";
 }
 
 std::int64_t Micros(radio::Nanos t) {
-  return t.count() / kNanosPerMicro;
+  return std::chrono::duration_cast<std::chrono::microseconds>(t).count();
 }
 
 void MoveIntoPlace(const std::string& path) {

@@ -1,6 +1,7 @@
 // `fireswarm radio-bench`: N vehicles and the server on one simulated half-duplex
 // channel; prints what the link delivers, as a table or one JSON object.
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -10,7 +11,9 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <string_view>
 #include <type_traits>
+#include <utility>
 
 #include "air_capture.hpp"
 #include "cli.hpp"
@@ -26,11 +29,8 @@ using radio::RadioBenchConfig;
 using radio::RadioBenchResult;
 
 constexpr const char* kName = "radio-bench";
-constexpr int kMaxVehicles = 254;
 constexpr double kMaxTurnaroundMs = 65.535;  // u16 microseconds in a SlotSchedule
-constexpr double kNanosPerMilli = 1e6;
-// 255 chunks (a one-byte count) of kMaxWaypointsPerChunk waypoints.
-constexpr int kMaxMissionWaypoints = 255 * static_cast<int>(radio::kMaxWaypointsPerChunk);
+using Milliseconds = std::chrono::duration<double, std::milli>;
 
 struct Flags {
   int vehicles = 10;
@@ -67,42 +67,51 @@ std::string Text(T value) {
   return out.str();
 }
 
+// RadioBenchConfig field -> the flag that sets it, so Validate()'s messages name flags.
+constexpr std::array<std::pair<const char*, const char*>, 10> kFlagOfField{{
+    {"vehicles", "vehicles"},
+    {"seconds", "seconds"},
+    {"drain_seconds", "drain-seconds"},
+    {"baud", "baud"},
+    {"turnaround", "turnaround-ms"},
+    {"loss", "loss"},
+    {"bit_error_rate", "bit-error-rate"},
+    {"reports_per_minute", "report-rate"},
+    {"telemetry_hz", "telemetry-hz"},
+    {"mission_waypoints", "mission-waypoints"},
+}};
+
+// "RadioBenchConfig.<field> must be ..." -> "--<flag> must be ...".
+std::string InFlagTerms(std::string message) {
+  constexpr std::string_view kPrefix = "RadioBenchConfig.";
+  for (const auto& [field, flag] : kFlagOfField) {
+    const std::string config_name = std::string(kPrefix) + field + " ";
+    if (message.rfind(config_name, 0) == 0) {
+      return "--" + std::string(flag) + " " + message.substr(config_name.size());
+    }
+  }
+  return message;
+}
+
+// The ranges live in RadioBenchConfig::Validate(); here only what a flag needs
+// before it can become a config value.
 RadioBenchConfig ToConfig(const Flags& f) {
-  RadioBenchConfig c;
-  if (f.vehicles < 1 || f.vehicles > kMaxVehicles)
-    BadFlag("vehicles", "in 1..254", Text(f.vehicles));
-  if (!(std::isfinite(f.seconds) && f.seconds > 0)) BadFlag("seconds", "> 0", Text(f.seconds));
-  if (!(std::isfinite(f.drain_seconds) && f.drain_seconds >= 0)) {
-    BadFlag("drain-seconds", ">= 0", Text(f.drain_seconds));
-  }
-  if (f.baud <= 0) BadFlag("baud", "> 0", Text(f.baud));
-  if (!(f.turnaround_ms >= 0 && f.turnaround_ms <= kMaxTurnaroundMs)) {
-    BadFlag("turnaround-ms", "in [0, 65.535]", Text(f.turnaround_ms));
-  }
-  if (!(f.loss >= 0 && f.loss < 1)) BadFlag("loss", "in [0, 1)", Text(f.loss));
-  if (!(f.bit_error_rate >= 0 && f.bit_error_rate < 1)) {
-    BadFlag("bit-error-rate", "in [0, 1)", Text(f.bit_error_rate));
-  }
   const auto mode = radio::ParseLinkMode(f.mode);
   if (!mode) BadFlag("mode", "poll or slots", f.mode);
   const auto checksum = radio::ParseChecksumMode(f.checksum);
   if (!checksum) BadFlag("checksum", "xor or crc16", f.checksum);
-  if (!(std::isfinite(f.report_rate) && f.report_rate >= 0)) {
-    BadFlag("report-rate", ">= 0", Text(f.report_rate));
+  // The scheduler sends the turnaround as u16 microseconds in a SlotSchedule.
+  if (!(f.turnaround_ms >= 0 && f.turnaround_ms <= kMaxTurnaroundMs)) {
+    BadFlag("turnaround-ms", "in [0, 65.535]", Text(f.turnaround_ms));
   }
-  if (!(std::isfinite(f.telemetry_hz) && f.telemetry_hz > 0)) {
-    BadFlag("telemetry-hz", "> 0", Text(f.telemetry_hz));
-  }
-  if (f.mission_waypoints < 0 || f.mission_waypoints > kMaxMissionWaypoints) {
-    BadFlag("mission-waypoints", "in 0.." + Text(kMaxMissionWaypoints), Text(f.mission_waypoints));
-  }
+  RadioBenchConfig c;
   c.vehicles = f.vehicles;
   c.seconds = f.seconds;
   c.drain_seconds = f.drain_seconds;
   c.mode = *mode;
   c.checksum = *checksum;
   c.baud = f.baud;
-  c.turnaround = radio::Nanos{std::llround(f.turnaround_ms * kNanosPerMilli)};
+  c.turnaround = std::chrono::round<radio::Nanos>(Milliseconds(f.turnaround_ms));
   c.loss = f.loss;
   c.bit_error_rate = f.bit_error_rate;
   c.reports_per_minute = f.report_rate;
@@ -110,9 +119,9 @@ RadioBenchConfig ToConfig(const Flags& f) {
   c.mission_waypoints = f.mission_waypoints;
   c.seed = f.seed;
   try {
-    c.Validate();  // what is left (e.g. the mission size) names the config field
+    c.Validate();
   } catch (const std::invalid_argument& e) {
-    throw UsageError(std::string("fireswarm radio-bench: ") + e.what());
+    throw UsageError("fireswarm radio-bench: " + InFlagTerms(e.what()));
   }
   return c;
 }
@@ -124,7 +133,7 @@ nlohmann::ordered_json ToJson(const RadioBenchConfig& c, const RadioBenchResult&
   j["checksum"] = std::string(radio::ToString(c.checksum));
   j["vehicles"] = c.vehicles;
   j["baud"] = c.baud;
-  j["turnaround_ms"] = static_cast<double>(c.turnaround.count()) / kNanosPerMilli;
+  j["turnaround_ms"] = Milliseconds(c.turnaround).count();
   j["loss"] = c.loss;
   j["bit_error_rate"] = c.bit_error_rate;
   j["report_rate_per_min"] = c.reports_per_minute;
@@ -173,9 +182,9 @@ nlohmann::ordered_json ToJson(const RadioBenchConfig& c, const RadioBenchResult&
 void PrintTable(const RadioBenchConfig& c, const RadioBenchResult& r, double wall_seconds) {
   std::cout << std::fixed << std::setprecision(kTableDecimals);
   std::cout << "radio-bench: " << c.vehicles << " vehicles, " << radio::ToString(c.mode)
-            << " mode, " << c.baud << " baud, turnaround "
-            << static_cast<double>(c.turnaround.count()) / kNanosPerMilli << " ms, loss " << c.loss
-            << ", " << radio::ToString(c.checksum) << ", " << c.seconds << " s (+ drain)\n";
+            << " mode, " << c.baud << " baud, turnaround " << Milliseconds(c.turnaround).count()
+            << " ms, loss " << c.loss << ", " << radio::ToString(c.checksum) << ", " << c.seconds
+            << " s (+ drain)\n";
   const auto row = [](const char* name, const auto& value) {
     std::cout << "  " << std::left << std::setw(34) << name << value << "\n";
   };

@@ -21,6 +21,11 @@ constexpr Nanos Airtime(std::size_t bytes, int baud, int bits_per_byte = kBitsPe
   return Nanos{(bits * 1'000'000'000 + baud - 1) / baud};
 }
 
+/// Converts seconds to nanoseconds, rounded to the nearest. Precondition: finite.
+inline Nanos FromSeconds(double seconds) {
+  return std::chrono::round<Nanos>(std::chrono::duration<double>(seconds));
+}
+
 /// Converts nanoseconds to seconds as a double, for figures and JSON.
 constexpr double ToSeconds(Nanos t) {
   return static_cast<double>(t.count()) * 1e-9;
