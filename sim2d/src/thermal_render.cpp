@@ -1,0 +1,203 @@
+// ThermalCamera::Render: truth temperatures per pixel, then the sensor (noise,
+// saturation, gain). "Render only what a camera can see": when the frame's
+// ground footprint holds no hot cell or distractor, every pixel is ambient and
+// no ray is cast per pixel; otherwise only pixels whose own footprint touches a
+// hot thing integrate radiance over it.
+#include <algorithm>
+#include <cmath>
+#include <span>
+#include <utility>
+#include <vector>
+
+#include "fireswarm/sim2d/thermal_camera.hpp"
+#include "thermal_noise.hpp"
+
+namespace fireswarm::sim2d {
+namespace {
+
+enum CornerKind : std::uint8_t { kGround = 0, kFar = 1, kSky = 2 };
+
+// Rays closer to horizontal than this (ENU z of the unnormalised ray) see sky.
+constexpr double kMinDownRay = 1e-9;
+
+CornerKind Classify(const Eigen::Vector3d& ray, const Eigen::Vector3d& origin, double max_range_m,
+                    Eigen::Vector2d& ground_m) {
+  if (ray.z() > -kMinDownRay) return kSky;
+  const double t = origin.z() / -ray.z();
+  ground_m = origin.head<2>() + t * ray.head<2>();
+  return t * t * ray.head<2>().squaredNorm() > max_range_m * max_range_m ? kFar : kGround;
+}
+
+// The sensor, fused into one pass per pixel: truth + NETD noise (1 sigma), then
+// saturation at the model's limit, then (fixed gain) the white-hot grey level.
+template <typename TruthC>
+void Sense(TruthC truth_c, float netd_k, float saturation_c, NormalStream& noise,
+           std::span<float> temperatures_c) {
+  for (std::size_t i = 0; i < temperatures_c.size(); ++i) {
+    temperatures_c[i] = std::min(truth_c(i) + netd_k * noise.Next(), saturation_c);
+  }
+}
+
+template <typename TruthC>
+void SenseFixedGain(TruthC truth_c, float netd_k, float saturation_c, NormalStream& noise,
+                    float min_c, float scale, std::span<float> temperatures_c,
+                    std::span<std::uint8_t> pixels) {
+  for (std::size_t i = 0; i < temperatures_c.size(); ++i) {
+    const float t = std::min(truth_c(i) + netd_k * noise.Next(), saturation_c);
+    temperatures_c[i] = t;
+    pixels[i] = WhiteHotGrey(t, min_c, scale);
+  }
+}
+
+// Automatic gain: the frame's coldest to hottest pixel, widened about its middle
+// to at least min_span_k.
+std::pair<double, double> AutoGainRangeC(std::span<const float> temperatures_c, double min_span_k) {
+  const auto [lo, hi] = std::minmax_element(temperatures_c.begin(), temperatures_c.end());
+  const double lo_c = *lo, hi_c = *hi;
+  if (hi_c - lo_c >= min_span_k) return {lo_c, hi_c};
+  const double mid_c = 0.5 * (lo_c + hi_c);
+  return {mid_c - 0.5 * min_span_k, mid_c + 0.5 * min_span_k};
+}
+
+}  // namespace
+
+const std::vector<std::uint8_t>& ThermalCamera::UniformGreyTable(float ambient_c) {
+  if (uniform_grey_ambient_c_ == ambient_c) return uniform_grey_;
+  const float* z = NormalQuantileTable();
+  const auto netd_k = static_cast<float>(model_.netd_k);
+  const auto saturation_c = static_cast<float>(model_.max_scene_c);
+  const auto min_c = static_cast<float>(options_.fixed_min_c);
+  const auto scale = static_cast<float>(255.0 / (options_.fixed_max_c - options_.fixed_min_c));
+  uniform_grey_.resize(NormalStream::kTableSize);
+  for (std::size_t k = 0; k < uniform_grey_.size(); ++k) {
+    uniform_grey_[k] =
+        WhiteHotGrey(std::min(ambient_c + netd_k * z[k], saturation_c), min_c, scale);
+  }
+  uniform_grey_ambient_c_ = ambient_c;
+  return uniform_grey_;
+}
+
+void ThermalCamera::Render(const VehicleTruth& vehicle, const TemperatureField& field,
+                           double capture_time_s, Rng& rng, ThermalImage& out) {
+  const std::size_t n =
+      static_cast<std::size_t>(model_.width_px) * static_cast<std::size_t>(model_.height_px);
+  temperatures_c_.resize(n);
+  out.width_px = model_.width_px;
+  out.height_px = model_.height_px;
+  out.capture_time_s = capture_time_s;
+  out.pixels.resize(n);
+  // Uniform: every pixel sees ambient ground, temperatures_c_ was not written.
+  const bool uniform = RenderTruthTemperatures(BasisFor(vehicle), field);
+  const auto ambient_c = static_cast<float>(field.ambient_c());
+  const auto uniform_truth = [ambient_c](std::size_t) { return ambient_c; };
+  const auto pixel_truth = [this](std::size_t i) { return temperatures_c_[i]; };
+  const auto netd_k = static_cast<float>(model_.netd_k);
+  const auto saturation_c = static_cast<float>(model_.max_scene_c);
+  NormalStream noise(rng);
+
+  if (options_.gain == GainMode::kFixed) {
+    const auto min_c = static_cast<float>(options_.fixed_min_c);
+    const auto scale = static_cast<float>(255.0 / (options_.fixed_max_c - options_.fixed_min_c));
+    if (uniform && !options_.keep_temperatures) {
+      const std::vector<std::uint8_t>& grey_of_noise = UniformGreyTable(ambient_c);
+      for (std::uint8_t& grey : out.pixels) grey = grey_of_noise[noise.NextIndex()];
+    } else if (uniform) {
+      SenseFixedGain(uniform_truth, netd_k, saturation_c, noise, min_c, scale, temperatures_c_,
+                     out.pixels);
+    } else {
+      SenseFixedGain(pixel_truth, netd_k, saturation_c, noise, min_c, scale, temperatures_c_,
+                     out.pixels);
+    }
+  } else {
+    if (uniform) {
+      Sense(uniform_truth, netd_k, saturation_c, noise, temperatures_c_);
+    } else {
+      Sense(pixel_truth, netd_k, saturation_c, noise, temperatures_c_);
+    }
+    const auto [lo_c, hi_c] = AutoGainRangeC(temperatures_c_, options_.agc_min_span_k);
+    MapWhiteHot(temperatures_c_, lo_c, hi_c, out.pixels);
+  }
+  if (options_.keep_temperatures) {
+    out.apparent_temperature_c.assign(temperatures_c_.begin(), temperatures_c_.end());
+  } else {
+    out.apparent_temperature_c.clear();
+  }
+}
+
+bool ThermalCamera::RenderTruthTemperatures(const RayBasis& basis, const TemperatureField& field) {
+  const double half_w = 0.5 * model_.width_px;
+  const double half_h = 0.5 * model_.height_px;
+  // The frame's footprint is the quad of its four corner rays when all of them
+  // meet the ground within range (the footprint is then convex and in range);
+  // otherwise it lies within max_range_m of the camera.
+  GroundBox box{basis.origin.head<2>(), basis.origin.head<2>()};
+  bool all_ground = true;
+  for (const double du : {-half_w, half_w}) {
+    for (const double dv : {-half_h, half_h}) {
+      Eigen::Vector2d p = basis.origin.head<2>();
+      const Eigen::Vector3d ray = basis.axis + du * basis.per_u + dv * basis.per_v;
+      all_ground = all_ground && Classify(ray, basis.origin, options_.max_range_m, p) == kGround;
+      box.min_m = box.min_m.cwiseMin(p);
+      box.max_m = box.max_m.cwiseMax(p);
+    }
+  }
+  if (!all_ground) {
+    const Vec2 range(options_.max_range_m, options_.max_range_m);
+    box = {basis.origin.head<2>() - range, basis.origin.head<2>() + range};
+  }
+  const bool hot_in_view = field.AnyHotIn(box);
+  if (all_ground && !hot_in_view) return true;
+  RenderNearHotThings(basis, field, hot_in_view);
+  return false;
+}
+
+void ThermalCamera::RenderNearHotThings(const RayBasis& basis, const TemperatureField& field,
+                                        bool hot_in_view) {
+  const int w = model_.width_px;
+  const int h = model_.height_px;
+  const auto corners = static_cast<std::size_t>((w + 1) * (h + 1));
+  corner_ground_.resize(corners);
+  corner_kind_.resize(corners);
+  for (int r = 0; r <= h; ++r) {
+    const Eigen::Vector3d row_ray = basis.axis + (r - 0.5 * h) * basis.per_v;
+    for (int c = 0; c <= w; ++c) {
+      const auto k = static_cast<std::size_t>(r * (w + 1) + c);
+      const Eigen::Vector3d ray = row_ray + (c - 0.5 * w) * basis.per_u;
+      corner_kind_[k] = Classify(ray, basis.origin, options_.max_range_m, corner_ground_[k]);
+    }
+  }
+  const double ambient_c = field.ambient_c();
+  const double ambient_w = RadianceFromC(ambient_c);
+  const double sky_w = RadianceFromC(field.sky_c());
+  for (int r = 0; r < h; ++r) {
+    for (int c = 0; c < w; ++c) {
+      const auto k0 = static_cast<std::size_t>(r * (w + 1) + c);
+      const std::size_t k[4] = {k0, k0 + 1, k0 + static_cast<std::size_t>(w) + 2,
+                                k0 + static_cast<std::size_t>(w) + 1};
+      int sky = 0, ground = 0;
+      for (const std::size_t i : k) {
+        sky += corner_kind_[i] == kSky ? 1 : 0;
+        ground += corner_kind_[i] == kGround ? 1 : 0;
+      }
+      double t_c = ambient_c;
+      if (ground == 4 && hot_in_view) {
+        const GroundQuad quad = {corner_ground_[k[0]], corner_ground_[k[1]], corner_ground_[k[2]],
+                                 corner_ground_[k[3]]};
+        GroundBox pixel_box{quad[0], quad[0]};
+        for (const Vec2& p : quad) {
+          pixel_box.min_m = pixel_box.min_m.cwiseMin(p);
+          pixel_box.max_m = pixel_box.max_m.cwiseMax(p);
+        }
+        if (field.AnyHotIn(pixel_box)) t_c = field.ApparentTemperatureOverC(quad);
+      } else if (sky > 0) {
+        // A pixel across the horizon: sky for the share of its corners above it,
+        // far (ambient) ground for the rest.
+        const double f = sky / 4.0;
+        t_c = ApparentCFromRadiance(f * sky_w + (1.0 - f) * ambient_w);
+      }
+      temperatures_c_[static_cast<std::size_t>(r * w + c)] = static_cast<float>(t_c);
+    }
+  }
+}
+
+}  // namespace fireswarm::sim2d

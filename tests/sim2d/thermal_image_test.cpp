@@ -1,0 +1,175 @@
+// White-hot images: the fixed radiometric range and its saturation, automatic
+// gain, distractors against fire, and PGM files.
+#include "fireswarm/sim2d/thermal_image.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "fireswarm/sim2d/thermal_camera.hpp"
+
+namespace fireswarm::sim2d {
+namespace {
+
+VehicleTruth Hovering(const Vec2& position_m, double altitude_m) {
+  VehicleTruth v;
+  v.position_m = position_m;
+  v.altitude_m = altitude_m;
+  v.phase = FlightPhase::kFlying;
+  return v;
+}
+
+// A burning patch around (500, 500) and a 60 C rock at (560, 500).
+struct FireAndRockScene {
+  FireGrid fire{FireConfig{}, MakeRng(1, "fire")};
+  TemperatureField field{fire, {{Vec2(560.0, 500.0), 8.0, 60.0}}};
+  FireAndRockScene() {
+    fire.AddIgnition({Vec2(500.0, 500.0), 0.0});
+    fire.AdvanceTo(300.0);
+  }
+};
+
+std::string ScratchPath(const std::string& name) {
+  return (std::filesystem::temp_directory_path() /
+          ("fireswarm_" + name + "_" +
+           std::to_string(::testing::UnitTest::GetInstance()->random_seed())))
+      .string();
+}
+
+TEST(ThermalImage, WhiteHotMapsRangeLinearlyAndClamps) {
+  const std::vector<float> temps = {-10.0F, 0.0F, 50.0F, 100.0F, 150.0F};
+  std::vector<std::uint8_t> grey(temps.size());
+  MapWhiteHot(temps, 0.0, 100.0, grey);
+  EXPECT_EQ(grey, (std::vector<std::uint8_t>{0, 0, 128, 255, 255}));
+}
+
+TEST(ThermalImage, FireSaturatesToWhiteInTheFixedRange) {
+  FireAndRockScene scene;
+  ASSERT_GT(scene.fire.burning_count(), 0U);
+  ThermalCameraOptions options;
+  options.keep_temperatures = true;
+  ThermalCamera camera(common::CameraModelByName("seed"), {}, options);
+  Rng rng = MakeRng(1, "camera");
+  const ThermalImage image =
+      camera.Render(Hovering(Vec2(500.0, 500.0), 100.0), scene.field, 3.5, rng);
+  EXPECT_EQ(image.width_px, 96);
+  EXPECT_EQ(image.height_px, 64);
+  EXPECT_DOUBLE_EQ(image.capture_time_s, 3.5);
+  const PixelCoord flame =
+      *camera.GroundToPixel(Hovering(Vec2(500.0, 500.0), 100.0), Vec2(502, 502));
+  EXPECT_EQ(image.At(flame.col(), flame.row()), 255);                     // fire: saturated
+  EXPECT_FLOAT_EQ(image.TemperatureC(flame.col(), flame.row()), 150.0F);  // the seed's limit
+  // Ambient 25 C in the fixed 0..150 C range is about 42 +- noise.
+  EXPECT_NEAR(image.At(2, 2), 42.5, 1.5);
+  // The rock, 60 m east (right of a north-facing camera), is warm but far below fire.
+  const PixelCoord rock =
+      *camera.GroundToPixel(Hovering(Vec2(500.0, 500.0), 100.0), Vec2(560, 500));
+  const float rock_c = image.TemperatureC(rock.col(), rock.row());
+  EXPECT_NEAR(rock_c, 60.0, 1.0);
+  EXPECT_GT(image.At(rock.col(), rock.row()), image.At(2, 2) + 40);
+  EXPECT_LT(image.At(rock.col(), rock.row()), 128);
+}
+
+TEST(ThermalImage, AmgSaturatesAtItsLowerLimit) {
+  FireAndRockScene scene;
+  ThermalCameraOptions options;
+  options.keep_temperatures = true;
+  ThermalCamera camera(common::CameraModelByName("amg8833"), {}, options);
+  Rng rng = MakeRng(1, "camera");
+  const ThermalImage image =
+      camera.Render(Hovering(Vec2(500.0, 500.0), 30.0), scene.field, 0.0, rng);
+  const float hottest =
+      *std::max_element(image.apparent_temperature_c.begin(), image.apparent_temperature_c.end());
+  EXPECT_FLOAT_EQ(hottest, 80.0F);
+}
+
+TEST(ThermalImage, AutomaticGainStretchesTheFrame) {
+  FireGrid fire(FireConfig{}, MakeRng(1, "fire"));
+  const TemperatureField field(fire, {{Vec2(520.0, 500.0), 6.0, 45.0}});
+  ThermalCameraOptions options;
+  options.gain = GainMode::kAuto;
+  ThermalCamera agc(common::CameraModelByName("lepton35"), {}, options);
+  ThermalCamera fixed(common::CameraModelByName("lepton35"));
+  const VehicleTruth v = Hovering(Vec2(500.0, 500.0), 80.0);
+  Rng rng = MakeRng(1, "camera");
+  const ThermalImage stretched = agc.Render(v, field, 0.0, rng);
+  const ThermalImage plain = fixed.Render(v, field, 0.0, rng);
+  const auto [lo, hi] = std::minmax_element(stretched.pixels.begin(), stretched.pixels.end());
+  EXPECT_EQ(*lo, 0);
+  EXPECT_EQ(*hi, 255);
+  const auto [plo, phi] = std::minmax_element(plain.pixels.begin(), plain.pixels.end());
+  EXPECT_LT(*phi - *plo, 60);
+  // A uniform scene is stretched no further than agc_min_span_k: noise stays small.
+  FireGrid empty(FireConfig{}, MakeRng(1, "fire"));
+  const TemperatureField flat(empty, {});
+  const ThermalImage uniform = agc.Render(v, flat, 0.0, rng);
+  const auto [ulo, uhi] = std::minmax_element(uniform.pixels.begin(), uniform.pixels.end());
+  EXPECT_GT(*ulo, 60);
+  EXPECT_LT(*uhi, 195);
+}
+
+TEST(ThermalImage, PlainGroundFastPathMatchesTheGeneralSensor) {
+  // Without keep_temperatures a frame of plain ground maps noise through a
+  // per-camera grey table; it must give the same pixels as the general path.
+  FireGrid empty(FireConfig{}, MakeRng(1, "fire"));
+  const TemperatureField field(empty, {});
+  ThermalCameraOptions keep;
+  keep.keep_temperatures = true;
+  ThermalCameraOptions options;
+  options.fixed_min_c = 24.0;  // a narrow range, so noise shows in the grey levels
+  options.fixed_max_c = 26.0;
+  keep.fixed_min_c = options.fixed_min_c;
+  keep.fixed_max_c = options.fixed_max_c;
+  ThermalCamera fast(common::CameraModelByName("seed"), {}, options);
+  ThermalCamera general(common::CameraModelByName("seed"), {}, keep);
+  Rng a = MakeRng(5, "camera"), b = MakeRng(5, "camera");
+  const VehicleTruth v = Hovering(Vec2(500.0, 500.0), 50.0);
+  const ThermalImage fast_image = fast.Render(v, field, 0.0, a);
+  const ThermalImage general_image = general.Render(v, field, 0.0, b);
+  EXPECT_TRUE(fast_image.apparent_temperature_c.empty());
+  EXPECT_EQ(fast_image.pixels, general_image.pixels);
+  const auto [lo, hi] = std::minmax_element(fast_image.pixels.begin(), fast_image.pixels.end());
+  EXPECT_GT(*hi - *lo, 20);  // 0.1 K NETD over a 2 K range: visible noise
+}
+
+TEST(ThermalImage, PgmIsWrittenAndReadBack) {
+  ThermalImage image;
+  image.width_px = 5;
+  image.height_px = 3;
+  for (int i = 0; i < 15; ++i) image.pixels.push_back(static_cast<std::uint8_t>(i * 17));
+  const std::string path = ScratchPath("roundtrip.pgm");
+  WritePgm(path, image);
+  const ThermalImage back = ReadPgm(path);
+  EXPECT_EQ(back.width_px, 5);
+  EXPECT_EQ(back.height_px, 3);
+  EXPECT_EQ(back.pixels, image.pixels);
+  std::filesystem::remove(path);
+}
+
+TEST(ThermalImage, BadPgmFilesAreReportedWithThePath) {
+  EXPECT_THROW(ReadPgm("/nonexistent/dir/x.pgm"), std::runtime_error);
+  const std::string path = ScratchPath("bad.pgm");
+  {
+    std::ofstream out(path, std::ios::binary);
+    out << "P5\n4 4\n255\nabc";  // 3 of 16 raster bytes
+  }
+  try {
+    ReadPgm(path);
+    ADD_FAILURE() << "short raster accepted";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+  }
+  {
+    std::ofstream out(path, std::ios::binary);
+    out << "P2\n1 1\n255\n0\n";
+  }
+  EXPECT_THROW(ReadPgm(path), std::runtime_error);
+  std::filesystem::remove(path);
+  EXPECT_THROW(WritePgm("/nonexistent/dir/x.pgm", ThermalImage{}), std::runtime_error);
+}
+
+}  // namespace
+}  // namespace fireswarm::sim2d
