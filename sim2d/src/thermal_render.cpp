@@ -4,7 +4,10 @@
 // no ray is cast per pixel; otherwise only pixels whose own footprint touches a
 // hot thing integrate radiance over it.
 #include <algorithm>
+#include <array>
+#include <cassert>
 #include <cmath>
+#include <cstring>
 #include <span>
 #include <utility>
 #include <vector>
@@ -49,6 +52,21 @@ void SenseFixedGain(TruthC truth_c, float netd_k, float saturation_c, NormalStre
   }
 }
 
+// Beyond this many grey levels of noise on plain ground (a narrow fixed range),
+// one table lookup per pixel beats one compare pass per level.
+constexpr std::size_t kMaxUniformGreySteps = 8;
+// Pixels per block in SenseUniformGround: fixed-size loops over local arrays
+// let the compiler use whole vector instructions even at -O2.
+constexpr std::size_t kBlockPx = 64;
+
+// Grey level of one uniform noise sample: base plus the steps it reaches.
+std::uint8_t GreyOfSample(std::uint16_t sample, std::uint8_t base,
+                          std::span<const std::uint16_t> steps) {
+  int grey = base;
+  for (const std::uint16_t step : steps) grey += sample >= step ? 1 : 0;
+  return static_cast<std::uint8_t>(grey);
+}
+
 // Automatic gain: the frame's coldest to hottest pixel, widened about its middle
 // to at least min_span_k.
 std::pair<double, double> AutoGainRangeC(std::span<const float> temperatures_c, double min_span_k) {
@@ -61,20 +79,53 @@ std::pair<double, double> AutoGainRangeC(std::span<const float> temperatures_c, 
 
 }  // namespace
 
-const std::vector<std::uint8_t>& ThermalCamera::UniformGreyTable(float ambient_c) {
+const ThermalCamera::UniformGrey& ThermalCamera::UniformGreyFor(float ambient_c) {
   if (uniform_grey_ambient_c_ == ambient_c) return uniform_grey_;
   const float* z = NormalQuantileTable();
   const auto netd_k = static_cast<float>(model_.netd_k);
   const auto saturation_c = static_cast<float>(model_.max_scene_c);
   const auto min_c = static_cast<float>(options_.fixed_min_c);
   const auto scale = static_cast<float>(255.0 / (options_.fixed_max_c - options_.fixed_min_c));
-  uniform_grey_.resize(NormalStream::kTableSize);
-  for (std::size_t k = 0; k < uniform_grey_.size(); ++k) {
-    uniform_grey_[k] =
-        WhiteHotGrey(std::min(ambient_c + netd_k * z[k], saturation_c), min_c, scale);
+  std::vector<std::uint8_t>& of_index = uniform_grey_.of_index;
+  of_index.resize(NormalStream::kTableSize);
+  for (std::size_t k = 0; k < of_index.size(); ++k) {
+    of_index[k] = WhiteHotGrey(std::min(ambient_c + netd_k * z[k], saturation_c), min_c, scale);
+  }
+  uniform_grey_.base = of_index.front();
+  uniform_grey_.steps.clear();
+  for (std::size_t k = 1; k < of_index.size(); ++k) {
+    assert(of_index[k] >= of_index[k - 1]);
+    // Samples from (k << kIndexShift) on select entry k or later: one step per level gained.
+    for (int level = of_index[k - 1]; level < of_index[k]; ++level) {
+      uniform_grey_.steps.push_back(static_cast<std::uint16_t>(k << NormalStream::kIndexShift));
+    }
   }
   uniform_grey_ambient_c_ = ambient_c;
   return uniform_grey_;
+}
+
+void ThermalCamera::SenseUniformGround(const UniformGrey& grey, NormalStream& noise,
+                                       std::span<std::uint8_t> pixels) {
+  if (grey.steps.size() > kMaxUniformGreySteps) {
+    for (std::uint8_t& pixel : pixels) pixel = grey.of_index[noise.NextIndex()];
+    return;
+  }
+  std::array<std::uint16_t, kBlockPx> samples{};
+  std::array<std::uint8_t, kBlockPx> block{};
+  const std::size_t blocked = pixels.size() - pixels.size() % kBlockPx;
+  for (std::size_t start = 0; start < blocked; start += kBlockPx) {
+    noise.FillUniform16(samples);
+    block.fill(grey.base);
+    for (const std::uint16_t step : grey.steps) {
+      for (std::size_t i = 0; i < kBlockPx; ++i) {
+        block[i] = static_cast<std::uint8_t>(block[i] + (samples[i] >= step ? 1 : 0));
+      }
+    }
+    std::memcpy(pixels.data() + start, block.data(), kBlockPx);
+  }
+  for (std::size_t i = blocked; i < pixels.size(); ++i) {
+    pixels[i] = GreyOfSample(noise.NextUniform16(), grey.base, grey.steps);
+  }
 }
 
 void ThermalCamera::Render(const VehicleTruth& vehicle, const TemperatureField& field,
@@ -99,8 +150,7 @@ void ThermalCamera::Render(const VehicleTruth& vehicle, const TemperatureField& 
     const auto min_c = static_cast<float>(options_.fixed_min_c);
     const auto scale = static_cast<float>(255.0 / (options_.fixed_max_c - options_.fixed_min_c));
     if (uniform && !options_.keep_temperatures) {
-      const std::vector<std::uint8_t>& grey_of_noise = UniformGreyTable(ambient_c);
-      for (std::uint8_t& grey : out.pixels) grey = grey_of_noise[noise.NextIndex()];
+      SenseUniformGround(UniformGreyFor(ambient_c), noise, out.pixels);
     } else if (uniform) {
       SenseFixedGain(uniform_truth, netd_k, saturation_c, noise, min_c, scale, temperatures_c_,
                      out.pixels);

@@ -26,6 +26,7 @@
 #include <cstdint>
 #include <limits>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "fireswarm/common/camera_model.hpp"
@@ -35,6 +36,8 @@
 #include "fireswarm/sim2d/vehicle_state.hpp"
 
 namespace fireswarm::sim2d {
+
+class NormalStream;  // private to sim2d (thermal_noise.hpp)
 
 /// How the camera is fixed to the vehicle.
 struct CameraMount {
@@ -103,8 +106,18 @@ class ThermalCamera {
   RayBasis BasisFor(const VehicleTruth& vehicle) const;
   // Fills temperatures_c_ with truth; returns true instead when all of it is ambient.
   bool RenderTruthTemperatures(const RayBasis& basis, const TemperatureField& field);
-  // Grey level for ambient + NETD * z, per noise-table entry (fixed gain).
-  const std::vector<std::uint8_t>& UniformGreyTable(float ambient_c);
+  // Fixed gain, plain ground at one temperature: the grey level of
+  // ambient + NETD * z for every noise-table entry z. The level never falls as
+  // z grows, so it is also `base` plus the number of `steps` (uniform-sample
+  // thresholds, one per level gained) that a pixel's sample reaches.
+  struct UniformGrey {
+    std::vector<std::uint8_t> of_index;
+    std::uint8_t base = 0;
+    std::vector<std::uint16_t> steps;
+  };
+  const UniformGrey& UniformGreyFor(float ambient_c);
+  void SenseUniformGround(const UniformGrey& grey, NormalStream& noise,
+                          std::span<std::uint8_t> pixels);
   // Per-pixel rays: sky, horizon, and (when hot_in_view) radiance near hot things.
   void RenderNearHotThings(const RayBasis& basis, const TemperatureField& field, bool hot_in_view);
 
@@ -118,9 +131,8 @@ class ThermalCamera {
   std::vector<float> temperatures_c_;
   std::vector<Eigen::Vector2d> corner_ground_;
   std::vector<std::uint8_t> corner_kind_;
-  // Grey level of ambient + NETD * z for every noise-table entry z, fixed gain
-  // only: a frame of plain ground is then one table lookup per pixel.
-  std::vector<std::uint8_t> uniform_grey_;
+  // For a frame of plain ground (fixed gain): a few compares per pixel.
+  UniformGrey uniform_grey_;
   float uniform_grey_ambient_c_ = std::numeric_limits<float>::quiet_NaN();
 };
 
