@@ -9,5 +9,7 @@ namespace fireswarm::app {
 
 int RunRadioDecode(const std::vector<std::string>& args);
 int RunRadioBench(const std::vector<std::string>& args);
+int RunPlan(const std::vector<std::string>& args);
+int RunSimBench(const std::vector<std::string>& args);
 
 }  // namespace fireswarm::app

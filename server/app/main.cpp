@@ -16,10 +16,14 @@ namespace {
 using fireswarm::app::Command;
 
 constexpr std::array kCommands{
+    Command{"plan", "plan the fleet's search of a GeoJSON area; write GeoJSON and QGC .plan files",
+            fireswarm::app::RunPlan},
     Command{"radio-bench", "simulate N vehicles on one half-duplex channel and print link figures",
             fireswarm::app::RunRadioBench},
     Command{"radio-decode", "decode a raw APOne byte capture into one JSON line per frame",
             fireswarm::app::RunRadioDecode},
+    Command{"sim-bench", "fly N drones with thermal cameras over a burning area; print the speed",
+            fireswarm::app::RunSimBench},
 };
 
 void PrintUsage(std::ostream& out) {

@@ -22,15 +22,15 @@ struct SearchArea {
 
 /// The fleet and how it flies.
 struct FleetSpec {
-  std::vector<int> receiver_ids;        ///< one per drone, 1..254, distinct
-  std::vector<Point> launch_points;     ///< local metres; one for all, or one per drone
-  double altitude_m = 60.0;             ///< above ground
-  double speed_mps = 10.0;              ///< cruise speed along lanes and in transit
-  double endurance_s = 1'800.0;         ///< flight time per sortie, reserve excluded
+  std::vector<int> receiver_ids;     ///< one per drone, 1..254, distinct
+  std::vector<Point> launch_points;  ///< local metres; one for all, or one per drone
+  double altitude_m = 60.0;          ///< above ground
+  double speed_mps = 10.0;           ///< cruise speed along lanes and in transit
+  double endurance_s = 1'800.0;      ///< flight time per sortie, reserve excluded
   const common::CameraModel* camera = nullptr;
-  double camera_pitch_deg = -90.0;      ///< mount pitch from the horizon, -90 = straight down
-  double side_overlap = 0.10;           ///< fraction of the footprint shared by neighbouring lanes
-  double turn_cost_s = 4.0;             ///< time lost at each lane turn (decelerate, turn, accelerate)
+  double camera_pitch_deg = -90.0;  ///< mount pitch from the horizon, -90 = straight down
+  double side_overlap = 0.10;       ///< fraction of the footprint shared by neighbouring lanes
+  double turn_cost_s = 4.0;         ///< time lost at each lane turn (decelerate, turn, accelerate)
 };
 
 enum class PlannerKind { kLawnmower, kOmpl };
@@ -51,23 +51,50 @@ struct DronePlan {
   int sorties = 1;
   double length_m = 0.0;
   double time_s = 0.0;
+  /// time_s split by what the drone does: flying lanes, turning at lane ends
+  /// (turn_cost_s each), and flying anything else (lane-to-lane connections,
+  /// cell-to-cell and launch/home transits, returns between sorties).
+  double sweep_s = 0.0;
+  double turn_s = 0.0;
+  double transit_s = 0.0;
 };
 
-/// The fleet's plan and its figures.
+/// The fleet's plan and its figures. "Region" below is the searchable part:
+/// `area` minus `no_fly`.
 struct Plan {
   std::vector<DronePlan> drones;
-  double sweep_width_m = 0.0;     ///< lane spacing: footprint width times (1 - side overlap)
-  double coverage = 0.0;          ///< fraction of the area inside the union of footprints, 0..1
-  double makespan_s = 0.0;        ///< the slowest drone's time
-  double lower_bound_s = 0.0;     ///< area / (N * sweep width * speed) + unavoidable transit
-  double nofly_violation_m = 0.0; ///< path metres inside no-fly zones (0 when correct)
-  double planning_seconds = 0.0;  ///< wall time PlanSearch took
+  double sweep_width_m = 0.0;  ///< lane spacing: footprint width times (1 - side overlap)
+  /// Fraction 0..1 of the region seen: the region rasterised (cells of 1 m up to
+  /// sweep / 10, about 4 million at most), a cell seen when its centre lies within
+  /// half the footprint width of any flown segment (lanes, turns and transits).
+  double coverage = 0.0;
+  double makespan_s = 0.0;  ///< the slowest drone's time, all sorties, turns included
+  /// A lower bound on the makespan: the largest, over distances r, of
+  /// A(r) / (N * sweep width * speed) + 2 * max(0, r - footprint / 2) / speed,
+  /// where A(r) is the region's area farther than r from the nearest launch point
+  /// (it can only be seen by a drone that got that far and must come back). At
+  /// r = 0 it is area / (N * sweep * speed); at the region's distance from the
+  /// launches it adds that unavoidable round trip. Ground time between sorties
+  /// is not counted (nor in makespan_s).
+  double lower_bound_s = 0.0;
+  double nofly_violation_m = 0.0;  ///< path metres strictly inside no-fly zones (0 when correct)
+  double planning_seconds = 0.0;   ///< wall time PlanSearch took
 };
 
-/// Plans the search. Deterministic for a given `seed`. Throws std::invalid_argument
-/// with a message naming the field when the fleet is unusable (no drones, speed or
-/// altitude <= 0, no camera, a launch point inside a no-fly zone), and
-/// std::runtime_error when the plan cannot fit the endurance even with sorties.
+/// Plans the search: one boustrophedon route over the region (coverage.hpp,
+/// SweepRoutes: one per candidate sweep direction, the one whose partition gives
+/// the shortest longest share kept), cut into contiguous shares of equal estimated
+/// time per drone, transit from and back to each launch point included, around
+/// no-fly zones (partition.hpp), flown in
+/// sorties when a share exceeds the endurance (sorties.hpp). With kOmpl each
+/// drone's share region is covered by CoverOmpl instead of its lanes.
+/// Deterministic for a given `seed`. Throws std::invalid_argument with a message
+/// naming the field when the fleet is unusable (receiver_ids empty, repeated or
+/// outside 1..254; launch_points not 1 or N, or inside a no-fly zone; speed_mps,
+/// endurance_s or altitude_m <= 0; turn_cost_s < 0; no camera; camera_pitch_deg
+/// outside [-90, 0); side_overlap outside [0, 1)) or the area is empty, and
+/// std::runtime_error naming endurance_s when the plan cannot fit the endurance
+/// even with sorties (one lane and the transits to and from it take longer).
 Plan PlanSearch(const SearchArea& area, const FleetSpec& fleet,
                 PlannerKind kind = PlannerKind::kLawnmower, unsigned seed = 1);
 

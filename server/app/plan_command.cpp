@@ -1,0 +1,308 @@
+// `fireswarm plan`: a search area (GeoJSON) and a fleet in; per-drone search plans
+// out as GeoJSON and QGroundControl .plan files, with the figures as a table or JSON.
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "cli.hpp"
+#include "commands.hpp"
+#include "fireswarm/common/camera_model.hpp"
+#include "fireswarm/planner/area_io.hpp"
+#include "fireswarm/planner/export.hpp"
+#include "fireswarm/planner/plan.hpp"
+
+namespace fireswarm::app {
+namespace {
+
+namespace po = boost::program_options;
+namespace fs = std::filesystem;
+using planner::FleetSpec;
+using planner::Plan;
+using planner::SearchArea;
+
+constexpr const char* kName = "plan";
+constexpr int kMaxDrones = 254;  // receiver IDs 1..254
+
+struct Flags {
+  std::string area;
+  std::string no_fly;
+  int drones = 0;
+  std::string receiver_ids;
+  std::string launch;
+  double altitude_m = 60.0;
+  double speed_mps = 10.0;
+  double endurance_s = 1'800.0;
+  std::string camera = "seed";
+  double camera_pitch_deg = -90.0;
+  double overlap = 0.10;
+  double turn_cost_s = 4.0;
+  std::string planner = "lawnmower";
+  unsigned seed = 1;
+  std::string out;
+  std::string qgc;
+  bool json = false;
+};
+
+[[noreturn]] void BadFlag(const std::string& flag, const std::string& problem) {
+  throw UsageError("fireswarm plan: --" + flag + " " + problem);
+}
+
+std::string Text(double value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
+
+std::vector<std::string> SplitOn(const std::string& text, char separator) {
+  std::vector<std::string> parts;
+  std::istringstream in(text);
+  for (std::string part; std::getline(in, part, separator);) parts.push_back(part);
+  return parts;
+}
+
+std::optional<double> ParseNumber(const std::string& text) {
+  std::size_t used = 0;
+  try {
+    const double value = std::stod(text, &used);
+    if (used == text.size() && std::isfinite(value)) return value;
+  } catch (const std::exception&) {
+  }
+  return std::nullopt;
+}
+
+std::vector<int> ReceiverIds(const Flags& f) {
+  std::vector<int> ids;
+  if (f.receiver_ids.empty()) {
+    for (int id = 1; id <= f.drones; ++id) ids.push_back(id);
+    return ids;
+  }
+  for (const std::string& part : SplitOn(f.receiver_ids, ',')) {
+    const auto value = ParseNumber(part);
+    if (!value || *value != std::floor(*value) || *value < 1 || *value > kMaxDrones) {
+      BadFlag("receiver-ids", "must be comma-separated integers in 1..254, got '" + part + "'");
+    }
+    const int id = static_cast<int>(*value);
+    if (std::find(ids.begin(), ids.end(), id) != ids.end()) {
+      BadFlag("receiver-ids", "lists " + part + " twice");
+    }
+    ids.push_back(id);
+  }
+  if (ids.size() != static_cast<std::size_t>(f.drones)) {
+    BadFlag("receiver-ids",
+            "has " + std::to_string(ids.size()) + " IDs for --drones " + std::to_string(f.drones));
+  }
+  return ids;
+}
+
+planner::Point Launch(const Flags& f, const SearchArea& area) {
+  if (f.launch.empty()) return planner::DefaultLaunchPoint(area);
+  const std::vector<std::string> parts = SplitOn(f.launch, ',');
+  const auto lat = parts.size() == 2 ? ParseNumber(parts[0]) : std::nullopt;
+  const auto lon = parts.size() == 2 ? ParseNumber(parts[1]) : std::nullopt;
+  if (!lat || !lon || !common::IsValidLatLon({*lat, *lon})) {
+    BadFlag("launch", "must be 'lat,lon' in degrees (lat in [-90, 90], lon in [-180, 180]), got '" +
+                          f.launch + "'");
+  }
+  const common::EastNorth local = area.frame.ToLocal({*lat, *lon});
+  return {local.east_m, local.north_m};
+}
+
+// Every flag's range, checked before any file is read or written.
+void CheckFlags(const Flags& f) {
+  if (f.area.empty()) BadFlag("area", "is required (a GeoJSON file)");
+  if (f.out.empty()) BadFlag("out", "is required (the GeoJSON file to write)");
+  if (f.drones < 1 || f.drones > kMaxDrones) {
+    BadFlag("drones", "must be in 1..254, got " + std::to_string(f.drones));
+  }
+  if (!(f.altitude_m > 0)) BadFlag("altitude-m", "must be > 0, got " + Text(f.altitude_m));
+  if (!(f.speed_mps > 0)) BadFlag("speed-mps", "must be > 0, got " + Text(f.speed_mps));
+  if (!(f.endurance_s > 0)) BadFlag("endurance-s", "must be > 0, got " + Text(f.endurance_s));
+  if (!(f.overlap >= 0 && f.overlap < 1)) {
+    BadFlag("overlap", "must be in [0, 1), got " + Text(f.overlap));
+  }
+  if (!(f.turn_cost_s >= 0)) BadFlag("turn-cost-s", "must be >= 0, got " + Text(f.turn_cost_s));
+  if (!(f.camera_pitch_deg >= -90 && f.camera_pitch_deg < 0)) {
+    BadFlag("camera-pitch-deg", "must be in [-90, 0), got " + Text(f.camera_pitch_deg));
+  }
+  if (common::FindCameraModel(f.camera) == nullptr) {
+    BadFlag("camera", "must be one of " + common::CameraModelNames() + ", got '" + f.camera + "'");
+  }
+  if (f.planner != "lawnmower" && f.planner != "ompl") {
+    BadFlag("planner", "must be lawnmower or ompl, got '" + f.planner + "'");
+  }
+  const fs::path out_dir = fs::absolute(f.out).parent_path();
+  if (!fs::is_directory(out_dir)) {
+    BadFlag("out", "names a directory that does not exist: " + out_dir.string());
+  }
+  if (!f.qgc.empty() && fs::exists(f.qgc) && !fs::is_directory(f.qgc)) {
+    BadFlag("qgc", "must be a directory, got the file " + f.qgc);
+  }
+}
+
+FleetSpec ToFleet(const Flags& f, const SearchArea& area) {
+  FleetSpec fleet;
+  fleet.receiver_ids = ReceiverIds(f);
+  fleet.launch_points = {Launch(f, area)};
+  fleet.altitude_m = f.altitude_m;
+  fleet.speed_mps = f.speed_mps;
+  fleet.endurance_s = f.endurance_s;
+  fleet.camera = common::FindCameraModel(f.camera);
+  fleet.camera_pitch_deg = f.camera_pitch_deg;
+  fleet.side_overlap = f.overlap;
+  fleet.turn_cost_s = f.turn_cost_s;
+  return fleet;
+}
+
+// FleetSpec field names in PlanSearch's messages -> the flags that set them.
+std::string InFlagTerms(const std::string& message) {
+  static const std::pair<const char*, const char*> kFlagOfField[] = {
+      {"receiver_ids", "receiver-ids"},
+      {"launch_points", "launch"},
+      {"altitude_m", "altitude-m"},
+      {"speed_mps", "speed-mps"},
+      {"endurance_s", "endurance-s"},
+      {"turn_cost_s", "turn-cost-s"},
+      {"camera_pitch_deg", "camera-pitch-deg"},
+      {"side_overlap", "overlap"},
+      {"camera", "camera"}};
+  for (const auto& [field, flag] : kFlagOfField) {
+    if (message.rfind(field, 0) == 0)
+      return "--" + std::string(flag) + message.substr(std::string(field).size());
+  }
+  return message;
+}
+
+nlohmann::ordered_json ToJson(const Flags& f, const Plan& plan,
+                              const std::vector<fs::path>& qgc_files) {
+  nlohmann::ordered_json drones = nlohmann::ordered_json::array();
+  for (const planner::DronePlan& d : plan.drones) {
+    drones.push_back({{"receiver_id", d.receiver_id},
+                      {"waypoints", d.waypoints.size()},
+                      {"sorties", d.sorties},
+                      {"length_m", d.length_m},
+                      {"time_s", d.time_s}});
+  }
+  nlohmann::ordered_json files = nlohmann::ordered_json::array();
+  for (const fs::path& p : qgc_files) files.push_back(p.string());
+  return {{"area", f.area},
+          {"planner", f.planner},
+          {"camera", f.camera},
+          {"sweep_width_m", plan.sweep_width_m},
+          {"coverage", plan.coverage},
+          {"makespan_s", plan.makespan_s},
+          {"lower_bound_s", plan.lower_bound_s},
+          {"nofly_violation_m", plan.nofly_violation_m},
+          {"planning_seconds", plan.planning_seconds},
+          {"drones", std::move(drones)},
+          {"out", f.out},
+          {"qgc_files", std::move(files)}};
+}
+
+void PrintTable(const Flags& f, const Plan& plan, const std::vector<fs::path>& qgc_files) {
+  std::cout << "plan: " << f.area << ", " << plan.drones.size() << " drones, " << f.planner
+            << ", camera " << f.camera << ", sweep width " << std::fixed << std::setprecision(1)
+            << plan.sweep_width_m << " m\n";
+  std::cout << "  receiver  waypoints  sorties  length (km)  time (min)\n";
+  for (const planner::DronePlan& d : plan.drones) {
+    std::cout << "  " << std::setw(8) << d.receiver_id << std::setw(11) << d.waypoints.size()
+              << std::setw(9) << d.sorties << std::setw(13) << std::setprecision(2)
+              << d.length_m / 1e3 << std::setw(12) << std::setprecision(1) << d.time_s / 60.0
+              << "\n";
+  }
+  const double ratio = plan.lower_bound_s > 0 ? plan.makespan_s / plan.lower_bound_s : 0.0;
+  std::cout << std::setprecision(2) << "  coverage " << 100.0 * plan.coverage << " %, makespan "
+            << std::setprecision(1) << plan.makespan_s / 60.0 << " min (lower bound "
+            << plan.lower_bound_s / 60.0 << " min, ratio " << std::setprecision(3) << ratio
+            << "), in no-fly zones " << std::setprecision(1) << plan.nofly_violation_m
+            << " m, planned in " << std::setprecision(3) << plan.planning_seconds << " s\n";
+  std::cout << "  wrote " << f.out;
+  if (!qgc_files.empty()) std::cout << " and " << qgc_files.size() << " .plan files in " << f.qgc;
+  std::cout << "\n";
+}
+
+}  // namespace
+
+int RunPlan(const std::vector<std::string>& args) {
+  Flags f;
+  po::options_description options("plan options");
+  auto add = options.add_options();
+  add("area", po::value(&f.area)->value_name("FILE"),
+      "search area: GeoJSON Polygon/MultiPolygon (holes allowed; features with "
+      "\"no_fly\": true are no-fly zones)");
+  add("no-fly", po::value(&f.no_fly)->value_name("FILE"), "no-fly zones: GeoJSON polygons");
+  add("drones", po::value(&f.drones), "number of drones, 1..254");
+  add("receiver-ids", po::value(&f.receiver_ids)->value_name("LIST"),
+      "comma-separated receiver IDs, one per drone (default 1..N)");
+  add("launch", po::value(&f.launch)->value_name("LAT,LON"),
+      "launch site for every drone (default: the area's centroid, or the area corner nearest "
+      "to it when the centroid is outside the area)");
+  add("altitude-m", po::value(&f.altitude_m)->default_value(f.altitude_m),
+      "flight altitude above ground");
+  add("speed-mps", po::value(&f.speed_mps)->default_value(f.speed_mps), "cruise speed");
+  add("endurance-s", po::value(&f.endurance_s)->default_value(f.endurance_s),
+      "flight time per sortie; longer plans are split into sorties");
+  add("camera", po::value(&f.camera)->default_value(f.camera), common::CameraModelNames().c_str());
+  add("camera-pitch-deg", po::value(&f.camera_pitch_deg)->default_value(f.camera_pitch_deg),
+      "camera mount pitch from the horizon, -90 = straight down");
+  add("overlap", po::value(&f.overlap)->default_value(f.overlap),
+      "side overlap of neighbouring lanes, fraction of the footprint width");
+  add("turn-cost-s", po::value(&f.turn_cost_s)->default_value(f.turn_cost_s),
+      "time lost at each lane turn");
+  add("planner", po::value(&f.planner)->default_value(f.planner), "lawnmower or ompl");
+  add("seed", po::value(&f.seed)->default_value(f.seed), "random seed (OMPL transit)");
+  add("out", po::value(&f.out)->value_name("FILE"), "GeoJSON FeatureCollection to write");
+  add("qgc", po::value(&f.qgc)->value_name("DIR"),
+      "also write QGroundControl .plan files (one per drone and sortie) into DIR");
+  add("json", po::bool_switch(&f.json), "print one JSON object instead of the table");
+  po::variables_map values;
+  if (!ParseCommandLine(kName,
+                        "--area A.geojson [--no-fly B.geojson] --drones N --out plan.geojson "
+                        "[options]",
+                        options, {}, args, values)) {
+    return kExitOk;
+  }
+  CheckFlags(f);
+
+  const SearchArea area = planner::LoadSearchArea(
+      f.area, f.no_fly.empty() ? std::nullopt : std::optional<fs::path>(f.no_fly));
+  const FleetSpec fleet = ToFleet(f, area);
+  const auto kind =
+      f.planner == "ompl" ? planner::PlannerKind::kOmpl : planner::PlannerKind::kLawnmower;
+  Plan plan;
+  try {
+    plan = planner::PlanSearch(area, fleet, kind, f.seed);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError("fireswarm plan: " + InFlagTerms(e.what()));
+  }
+
+  // Every text is built before the first file is touched; each file is replaced atomically.
+  const std::string geojson = planner::PlanToGeoJson(plan, area, fleet);
+  const std::vector<planner::QgcPlanFile> qgc =
+      f.qgc.empty() ? std::vector<planner::QgcPlanFile>{} : planner::PlanToQgc(plan, area, fleet);
+  std::vector<fs::path> qgc_files;
+  if (!f.qgc.empty()) {
+    fs::create_directories(f.qgc);
+    for (const planner::QgcPlanFile& file : qgc) {
+      qgc_files.push_back(fs::path(f.qgc) / file.file_name);
+      planner::WriteFileAtomically(qgc_files.back(), file.json);
+    }
+  }
+  planner::WriteFileAtomically(f.out, geojson);
+
+  if (f.json) {
+    std::cout << ToJson(f, plan, qgc_files).dump() << "\n";
+  } else {
+    PrintTable(f, plan, qgc_files);
+  }
+  return kExitOk;
+}
+
+}  // namespace fireswarm::app
