@@ -1,13 +1,23 @@
 #!/usr/bin/env bash
 # The main job: builds fireswarm (installing what is missing) and runs it.
-# Until the swarm mission lands, that is the radio benchmark: 50 simulated
-# vehicles sharing one 57,600-baud half-duplex channel, poll and slot modes.
+# Until the swarm mission lands, a tour of what is built: plan a search of a
+# 113 km^2 forest for 8 drones, fly 100 simulated drones with thermal cameras
+# over a burning area, and put 50 vehicles on one half-duplex radio channel.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 bash scripts/build.sh --target fireswarm
-for mode in poll slots; do
+out=build/demo
+rm -rf "$out" && mkdir -p "$out/qgc"
+
+run() {
   echo
-  echo "== fireswarm radio-bench --vehicles 50 --seconds 120 --mode $mode =="
-  build/bin/fireswarm radio-bench --vehicles 50 --seconds 120 --mode "$mode"
-done
+  echo "== fireswarm $* =="
+  build/bin/fireswarm "$@"
+}
+
+run plan --area scenarios/areas/forest_large.geojson --drones 8 --altitude-m 60 \
+  --speed-mps 10 --camera seed --out "$out/forest_plan.geojson" --qgc "$out/qgc"
+echo "(plan written to $out/forest_plan.geojson, QGroundControl plans to $out/qgc/)"
+run sim-bench --drones 100 --camera seed --area-km2 25 --seconds 120
+run radio-bench --vehicles 50 --seconds 120 --mode slots

@@ -252,7 +252,7 @@ int RunPlan(const std::vector<std::string>& args) {
   add("camera", po::value(&f.camera)->default_value(f.camera), common::CameraModelNames().c_str());
   add("camera-pitch-deg", po::value(&f.camera_pitch_deg)->default_value(f.camera_pitch_deg),
       "camera mount pitch from the horizon, -90 = straight down");
-  add("overlap", po::value(&f.overlap)->default_value(f.overlap),
+  add("overlap", po::value(&f.overlap)->default_value(f.overlap, "0.1"),
       "side overlap of neighbouring lanes, fraction of the footprint width");
   add("turn-cost-s", po::value(&f.turn_cost_s)->default_value(f.turn_cost_s),
       "time lost at each lane turn");

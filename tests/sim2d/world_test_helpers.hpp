@@ -12,6 +12,14 @@ namespace fireswarm::sim2d::testing {
 
 inline constexpr double kG = 9.80665;
 
+/// A vehicle with default parameters standing at `launch_m`.
+inline VehicleConfig VehicleAt(int id, Vec2 launch_m) {
+  VehicleConfig vehicle;
+  vehicle.id = id;
+  vehicle.launch_position_m = launch_m;
+  return vehicle;
+}
+
 /// Armed, level, holding the current height.
 inline ActuatorCommand Hover() {
   ActuatorCommand command;
