@@ -29,7 +29,9 @@ const std::array<CameraModel, 3> kModels = {{
 
 }  // namespace
 
-std::span<const CameraModel> CameraModels() { return kModels; }
+std::span<const CameraModel> CameraModels() {
+  return kModels;
+}
 
 const CameraModel* FindCameraModel(std::string_view name) {
   for (const CameraModel& model : kModels) {
@@ -49,8 +51,8 @@ std::string CameraModelNames() {
 
 const CameraModel& CameraModelByName(std::string_view name) {
   if (const CameraModel* model = FindCameraModel(name)) return *model;
-  throw std::invalid_argument("unknown camera model '" + std::string(name) + "' (known: " +
-                              CameraModelNames() + ")");
+  throw std::invalid_argument("unknown camera model '" + std::string(name) +
+                              "' (known: " + CameraModelNames() + ")");
 }
 
 }  // namespace fireswarm::common

@@ -128,8 +128,8 @@ void PrintTable(const sim2d::BenchScenarioSpec& spec, const Figures& f) {
   };
   const auto share = [&](double part_s) {
     std::ostringstream out;
-    out << std::fixed << std::setprecision(3) << part_s << " s ("
-        << std::setprecision(1) << 100.0 * part_s / f.wall_seconds << " %)";
+    out << std::fixed << std::setprecision(3) << part_s << " s (" << std::setprecision(1)
+        << 100.0 * part_s / f.wall_seconds << " %)";
     return out.str();
   };
   row("real-time factor", f.sim_seconds / f.wall_seconds);
@@ -139,7 +139,8 @@ void PrintTable(const sim2d::BenchScenarioSpec& spec, const Figures& f) {
   row("  fire", share(f.fire_s));
   row("  cameras", share(f.cameras_s));
   row("camera frames", f.camera_frames);
-  row("collisions / near misses", std::to_string(f.collisions) + " / " + std::to_string(f.near_misses));
+  row("collisions / near misses",
+      std::to_string(f.collisions) + " / " + std::to_string(f.near_misses));
   row("burning cells at end", f.burning_cells);
   row("state hash", HexHash(f.state_hash));
 }

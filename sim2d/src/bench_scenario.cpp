@@ -32,7 +32,8 @@ double FootprintWidthM(const std::string& camera, double altitude_m) {
 
 void BenchScenarioSpec::Validate() const {
   if (drones < 1 || drones > kMaxDrones) {
-    Bad("drones", "must be in [1, " + std::to_string(kMaxDrones) + "], got " + std::to_string(drones));
+    Bad("drones",
+        "must be in [1, " + std::to_string(kMaxDrones) + "], got " + std::to_string(drones));
   }
   if (camera != "none" && common::FindCameraModel(camera) == nullptr) {
     Bad("camera", "must be none|" + common::CameraModelNames() + ", got '" + camera + "'");

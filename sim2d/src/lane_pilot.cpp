@@ -80,8 +80,8 @@ void LanePilot::SteerToward(const Vec2& target_m, const VehicleTruth& truth,
   // Nose down (negative pitch) accelerates forward; right wing down accelerates right.
   command.pitch_rad = std::clamp(-std::atan(accel.dot(forward) / kGravityMps2),
                                  -params_.max_tilt_rad, params_.max_tilt_rad);
-  command.roll_rad = std::clamp(std::atan(accel.dot(right) / kGravityMps2),
-                                -params_.max_tilt_rad, params_.max_tilt_rad);
+  command.roll_rad = std::clamp(std::atan(accel.dot(right) / kGravityMps2), -params_.max_tilt_rad,
+                                params_.max_tilt_rad);
   if (distance_m > params_.acceptance_radius_m) {
     const double desired_heading = std::atan2(to_target.x(), to_target.y());
     command.yaw_rate_radps = params_.heading_gain_per_s * WrapPi(desired_heading - heading);

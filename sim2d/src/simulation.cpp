@@ -62,8 +62,8 @@ void SimulationConfig::Validate() const {
       Bad(field + ".vehicle_id", "already has a camera: " + std::to_string(camera.vehicle_id));
     }
     if (common::FindCameraModel(camera.model) == nullptr) {
-      Bad(field + ".model", "must be one of " + common::CameraModelNames() + ", got '" +
-                                camera.model + "'");
+      Bad(field + ".model",
+          "must be one of " + common::CameraModelNames() + ", got '" + camera.model + "'");
     }
   }
 }
@@ -110,7 +110,9 @@ void Simulation::Step() {
   StepCameras();
 }
 
-void Simulation::StepPhysics() { world_.Step(); }
+void Simulation::StepPhysics() {
+  world_.Step();
+}
 
 void Simulation::StepFire() {
   const double now_s = world_.time_s();

@@ -11,13 +11,13 @@ namespace fireswarm::common {
 /// A thermal camera's sensor and optics (square pixels, pinhole model).
 struct CameraModel {
   std::string_view name;
-  int width_px = 0;         ///< columns, along the horizontal field of view
-  int height_px = 0;        ///< rows, along the vertical field of view
-  double hfov_deg = 0.0;    ///< full horizontal field of view
-  double vfov_deg = 0.0;    ///< full vertical field of view
+  int width_px = 0;       ///< columns, along the horizontal field of view
+  int height_px = 0;      ///< rows, along the vertical field of view
+  double hfov_deg = 0.0;  ///< full horizontal field of view
+  double vfov_deg = 0.0;  ///< full vertical field of view
   double frame_rate_hz = 0.0;
-  double netd_k = 0.0;      ///< noise-equivalent temperature difference, kelvin (1 sigma)
-  double max_scene_c = 0.0; ///< hottest scene temperature the sensor reports before it saturates
+  double netd_k = 0.0;       ///< noise-equivalent temperature difference, kelvin (1 sigma)
+  double max_scene_c = 0.0;  ///< hottest scene temperature the sensor reports before it saturates
 };
 
 /// Every known model: `seed` (the thesis' simulated camera, 96x64, 75x60 deg, seed

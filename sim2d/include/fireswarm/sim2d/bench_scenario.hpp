@@ -14,11 +14,11 @@ namespace fireswarm::sim2d {
 
 struct BenchScenarioSpec {
   int drones = 100;
-  std::string camera = "seed";     ///< a camera model name, or "none"
-  double area_km2 = 4.0;           ///< a square of this area, centred on the origin
-  int fires = 5;                   ///< random ignitions at t = 0
-  int distractors = 20;            ///< random hot rocks
-  double altitude_m = 60.0;        ///< lowest lane altitude; vehicles are staggered above it
+  std::string camera = "seed";  ///< a camera model name, or "none"
+  double area_km2 = 4.0;        ///< a square of this area, centred on the origin
+  int fires = 5;                ///< random ignitions at t = 0
+  int distractors = 20;         ///< random hot rocks
+  double altitude_m = 60.0;     ///< lowest lane altitude; vehicles are staggered above it
   double speed_mps = 10.0;
   std::uint64_t seed = 1;
 

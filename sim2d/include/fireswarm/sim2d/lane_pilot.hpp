@@ -18,7 +18,7 @@ struct LanePilotParams {
   double velocity_gain_per_s = 0.8;  ///< desired acceleration per m/s of velocity error
   double altitude_gain_per_s = 0.8;  ///< climb rate per metre of altitude error
   double max_tilt_rad = 0.35;
-  double heading_gain_per_s = 1.5;   ///< yaw rate per radian of heading error
+  double heading_gain_per_s = 1.5;  ///< yaw rate per radian of heading error
 };
 
 class LanePilot {

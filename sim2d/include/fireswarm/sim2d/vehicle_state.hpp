@@ -19,25 +19,25 @@ using Vec2 = Eigen::Vector2d;
 enum class FlightPhase {
   kOnGround,  ///< resting on the ground, motors idle or spooling up
   kFlying,
-  kCrashed,   ///< hit the ground (or another drone) too hard; no longer moves
-  kLost,      ///< removed by a total-loss fault; no longer moves or senses
+  kCrashed,  ///< hit the ground (or another drone) too hard; no longer moves
+  kLost,     ///< removed by a total-loss fault; no longer moves or senses
 };
 
 /// Truth about one vehicle. Used by the cameras and for scoring; the vehicle's
 /// own software sees only sensor readings (sensors.hpp) and images.
 struct VehicleTruth {
-  int id = 0;                       ///< receiver ID
-  Vec2 position_m = Vec2::Zero();   ///< local ENU
-  double altitude_m = 0.0;          ///< above ground
-  Vec2 velocity_mps = Vec2::Zero(); ///< local ENU
-  double climb_rate_mps = 0.0;      ///< positive up
+  int id = 0;                        ///< receiver ID
+  Vec2 position_m = Vec2::Zero();    ///< local ENU
+  double altitude_m = 0.0;           ///< above ground
+  Vec2 velocity_mps = Vec2::Zero();  ///< local ENU
+  double climb_rate_mps = 0.0;       ///< positive up
   double roll_rad = 0.0;
   double pitch_rad = 0.0;
-  double heading_rad = 0.0;         ///< clockwise from north, in [0, 2 pi)
+  double heading_rad = 0.0;  ///< clockwise from north, in [0, 2 pi)
   double roll_rate_radps = 0.0;
   double pitch_rate_radps = 0.0;
-  double yaw_rate_radps = 0.0;      ///< clockwise seen from above
-  double battery_fraction = 1.0;    ///< charge left, 0..1
+  double yaw_rate_radps = 0.0;    ///< clockwise seen from above
+  double battery_fraction = 1.0;  ///< charge left, 0..1
   FlightPhase phase = FlightPhase::kOnGround;
 };
 
