@@ -20,6 +20,12 @@ namespace {
 
 enum CornerKind : std::uint8_t { kGround = 0, kFar = 1, kSky = 2 };
 
+// A cooling cell whose temperature is within this fraction of the camera's
+// NETD of ambient is not rendered on its own: a pixel it fills would read at
+// most this many sigmas of noise warm (it still counts in pixels that other hot
+// things send to the exact integral).
+constexpr double kNegligibleNetdFraction = 0.05;
+
 // Rays closer to horizontal than this (ENU z of the unnormalised ray) see sky.
 constexpr double kMinDownRay = 1e-9;
 
@@ -29,6 +35,18 @@ CornerKind Classify(const Eigen::Vector3d& ray, const Eigen::Vector3d& origin, d
   const double t = origin.z() / -ray.z();
   ground_m = origin.head<2>() + t * ray.head<2>();
   return t * t * ray.head<2>().squaredNorm() > max_range_m * max_range_m ? kFar : kGround;
+}
+
+// Side of the square tiles of pixels that RenderNearHotThings clears at once.
+constexpr int kTilePx = 8;
+
+GroundBox BoxOf(const GroundQuad& quad) {
+  GroundBox box{quad[0], quad[0]};
+  for (const Vec2& p : quad) {
+    box.min_m = box.min_m.cwiseMin(p);
+    box.max_m = box.max_m.cwiseMax(p);
+  }
+  return box;
 }
 
 // The sensor, fused into one pass per pixel: truth + NETD noise (1 sigma), then
@@ -195,7 +213,11 @@ bool ThermalCamera::RenderTruthTemperatures(const RayBasis& basis, const Tempera
     const Vec2 range(options_.max_range_m, options_.max_range_m);
     box = {basis.origin.head<2>() - range, basis.origin.head<2>() + range};
   }
-  const bool hot_in_view = field.AnyHotIn(box);
+  // The coarse tile index first (cheap for frames far from fire), then the
+  // frame's own hot cells; cooling cells warm by at most a small fraction of the
+  // NETD (one sigma of noise) are left out, they cannot change what is seen.
+  const bool hot_in_view =
+      field.AnyHotIn(box) && hot_mask_.Build(field, box, kNegligibleNetdFraction * model_.netd_k);
   if (all_ground && !hot_in_view) return true;
   RenderNearHotThings(basis, field, hot_in_view);
   return false;
@@ -208,44 +230,64 @@ void ThermalCamera::RenderNearHotThings(const RayBasis& basis, const Temperature
   const auto corners = static_cast<std::size_t>((w + 1) * (h + 1));
   corner_ground_.resize(corners);
   corner_kind_.resize(corners);
-  for (int r = 0; r <= h; ++r) {
-    const Eigen::Vector3d row_ray = basis.axis + (r - 0.5 * h) * basis.per_v;
-    for (int c = 0; c <= w; ++c) {
-      const auto k = static_cast<std::size_t>(r * (w + 1) + c);
-      const Eigen::Vector3d ray = row_ray + (c - 0.5 * w) * basis.per_u;
-      corner_kind_[k] = Classify(ray, basis.origin, options_.max_range_m, corner_ground_[k]);
-    }
-  }
+  const auto corner = [w](int r, int c) { return static_cast<std::size_t>(r * (w + 1) + c); };
+  // Corners are classified only where needed (tile corners, then the corners of
+  // tiles that are not cleared at once); the same expression everywhere, so a
+  // corner shared by two tiles gets the same ground point.
+  const auto classify = [&](int r, int c) {
+    const std::size_t k = corner(r, c);
+    const Eigen::Vector3d ray =
+        basis.axis + (r - 0.5 * h) * basis.per_v + (c - 0.5 * w) * basis.per_u;
+    corner_kind_[k] = Classify(ray, basis.origin, options_.max_range_m, corner_ground_[k]);
+  };
   const double ambient_c = field.ambient_c();
   const double ambient_w = RadianceFromC(ambient_c);
   const double sky_w = RadianceFromC(field.sky_c());
-  for (int r = 0; r < h; ++r) {
-    for (int c = 0; c < w; ++c) {
-      const auto k0 = static_cast<std::size_t>(r * (w + 1) + c);
-      const std::size_t k[4] = {k0, k0 + 1, k0 + static_cast<std::size_t>(w) + 2,
-                                k0 + static_cast<std::size_t>(w) + 1};
-      int sky = 0, ground = 0;
-      for (const std::size_t i : k) {
-        sky += corner_kind_[i] == kSky ? 1 : 0;
-        ground += corner_kind_[i] == kGround ? 1 : 0;
+  const auto pixel_c = [&](int r, int c) {
+    const std::size_t k[4] = {corner(r, c), corner(r, c + 1), corner(r + 1, c + 1),
+                              corner(r + 1, c)};
+    int sky = 0, ground = 0;
+    for (const std::size_t i : k) {
+      sky += corner_kind_[i] == kSky ? 1 : 0;
+      ground += corner_kind_[i] == kGround ? 1 : 0;
+    }
+    if (ground == 4 && hot_in_view) {
+      const GroundQuad quad = {corner_ground_[k[0]], corner_ground_[k[1]], corner_ground_[k[2]],
+                               corner_ground_[k[3]]};
+      if (hot_mask_.AnyIn(BoxOf(quad))) return field.ApparentTemperatureOverC(quad);
+    } else if (sky > 0) {
+      // A pixel across the horizon: sky for the share of its corners above it,
+      // far (ambient) ground for the rest.
+      const double f = sky / 4.0;
+      return ApparentCFromRadiance(f * sky_w + (1.0 - f) * ambient_w);
+    }
+    return ambient_c;
+  };
+  // Tiles of pixels: when a tile's four outer corners meet the ground, its
+  // footprint is their convex quad (a plane maps lines to lines) and every
+  // inner corner is ground too, so one mask lookup clears a tile far from fire.
+  for (int r0 = 0; r0 < h; r0 += kTilePx) {
+    const int r1 = std::min(r0 + kTilePx, h);
+    for (int c0 = 0; c0 < w; c0 += kTilePx) {
+      const int c1 = std::min(c0 + kTilePx, w);
+      for (const int r : {r0, r1}) {
+        for (const int c : {c0, c1}) classify(r, c);
       }
-      double t_c = ambient_c;
-      if (ground == 4 && hot_in_view) {
-        const GroundQuad quad = {corner_ground_[k[0]], corner_ground_[k[1]], corner_ground_[k[2]],
-                                 corner_ground_[k[3]]};
-        GroundBox pixel_box{quad[0], quad[0]};
-        for (const Vec2& p : quad) {
-          pixel_box.min_m = pixel_box.min_m.cwiseMin(p);
-          pixel_box.max_m = pixel_box.max_m.cwiseMax(p);
+      const std::size_t k[4] = {corner(r0, c0), corner(r0, c1), corner(r1, c1), corner(r1, c0)};
+      bool tile_cold = hot_in_view;
+      for (const std::size_t i : k) tile_cold = tile_cold && corner_kind_[i] == kGround;
+      tile_cold =
+          tile_cold && !hot_mask_.AnyIn(BoxOf({corner_ground_[k[0]], corner_ground_[k[1]],
+                                               corner_ground_[k[2]], corner_ground_[k[3]]}));
+      for (int r = r0; r <= r1 && !tile_cold; ++r) {
+        for (int c = c0; c <= c1; ++c) classify(r, c);
+      }
+      for (int r = r0; r < r1; ++r) {
+        float* row = temperatures_c_.data() + static_cast<std::size_t>(r * w);
+        for (int c = c0; c < c1; ++c) {
+          row[c] = static_cast<float>(tile_cold ? ambient_c : pixel_c(r, c));
         }
-        if (field.AnyHotIn(pixel_box)) t_c = field.ApparentTemperatureOverC(quad);
-      } else if (sky > 0) {
-        // A pixel across the horizon: sky for the share of its corners above it,
-        // far (ambient) ground for the rest.
-        const double f = sky / 4.0;
-        t_c = ApparentCFromRadiance(f * sky_w + (1.0 - f) * ambient_w);
       }
-      temperatures_c_[static_cast<std::size_t>(r * w + c)] = static_cast<float>(t_c);
     }
   }
 }

@@ -117,6 +117,30 @@ TEST(TemperatureField, GridSplitOfAFootprintMatchesPerCellClipping) {
   EXPECT_EQ(SplitQuadIntoCells(quad, Vec2(0.0, 0.0), 1.0, pieces.data(), 16), -1);
 }
 
+TEST(TemperatureField, HotCellMaskIsExactToACellWhereTheTileIndexIsNot) {
+  // One burning cell, (100, 100)-(105, 105), and a rock: the field's 80 m tiles
+  // say "maybe" all around the fire; the frame's mask must say so only for
+  // boxes that touch the burning cell or the rock's box.
+  FireGrid fire(SmallArea(), MakeRng(1, "fire"));
+  fire.AddIgnition({Vec2(102.0, 102.0), 0.0});
+  fire.AdvanceTo(0.0);
+  ASSERT_EQ(fire.burning_count(), 1u);
+  const TemperatureField field(fire, {{Vec2(50.0, 50.0), 4.0, 55.0}});
+  HotCellMask mask;
+  ASSERT_TRUE(mask.Build(field, {Vec2(0.0, 0.0), Vec2(200.0, 200.0)}, 0.0));
+  const GroundBox near_fire{Vec2(130.0, 130.0), Vec2(140.0, 140.0)};
+  EXPECT_TRUE(field.AnyHotIn(near_fire));
+  EXPECT_FALSE(mask.AnyIn(near_fire));
+  EXPECT_TRUE(mask.AnyIn({Vec2(104.0, 104.0), Vec2(110.0, 110.0)}));
+  EXPECT_FALSE(mask.AnyIn({Vec2(105.5, 100.0), Vec2(110.0, 104.0)}));
+  EXPECT_TRUE(mask.AnyIn({Vec2(53.5, 50.0), Vec2(56.0, 51.0)}));   // rock box reaches 54.2 m
+  EXPECT_FALSE(mask.AnyIn({Vec2(60.5, 50.0), Vec2(61.0, 51.0)}));  // next cell but one
+  EXPECT_FALSE(mask.AnyIn({Vec2(-50.0, -50.0), Vec2(-40.0, -40.0)}));
+  // A frame box away from both marks nothing.
+  EXPECT_FALSE(mask.Build(field, {Vec2(150.0, 150.0), Vec2(200.0, 200.0)}, 0.0));
+  EXPECT_FALSE(mask.AnyIn({Vec2(104.0, 104.0), Vec2(110.0, 110.0)}));
+}
+
 TEST(TemperatureField, BadDistractorsAreRejectedNamingTheField) {
   FireGrid fire(SmallArea(), MakeRng(1, "fire"));
   try {

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -72,6 +73,38 @@ class TemperatureField {
   std::vector<GroundBox> distractor_boxes_;
   std::vector<std::vector<Vec2>> distractor_polygons_;
   double sky_c_;
+};
+
+/// Where in one box (a camera frame's ground footprint) something hot enough
+/// to see lies, at the fire grid's cell resolution: built once per frame, it
+/// lets each pixel ask exactly (to a cell) and in O(1) whether anything hot
+/// touches its footprint, where TemperatureField::AnyHotIn answers per 80 m
+/// tile and sends whole neighbourhoods of a small fire to the exact integral.
+class HotCellMask {
+ public:
+  /// Marks every cell of the fire grid's lattice (extended beyond the grid for
+  /// distractors) inside `box` that holds a burning cell, a cooling cell more
+  /// than `negligible_k` kelvin above ambient, or part of a distractor's
+  /// bounding box. Returns false when it marked none. Reuses its storage.
+  bool Build(const TemperatureField& field, const GroundBox& box, double negligible_k);
+  /// True when `box` touches a marked cell (closed squares). False means only
+  /// ambient ground and cells at most `negligible_k` warm lie in `box`.
+  bool AnyIn(const GroundBox& box) const;
+
+ private:
+  struct CellRect {
+    int col_lo, row_lo, col_hi, row_hi;  // inclusive, fire-grid lattice indices
+  };
+  int ColOf(double x_m) const;
+  int RowOf(double y_m) const;
+
+  Vec2 origin_m_ = Vec2::Zero();
+  double per_cell_m_ = 1.0;  // 1 / cell size, 1/m
+  // Marked extent: lattice cells [col0_, col0_ + cols_) x [row0_, row0_ + rows_).
+  int col0_ = 0, row0_ = 0, cols_ = 0, rows_ = 0;
+  std::vector<CellRect> rects_;
+  // Summed-area table of marked cells, (cols_ + 1) x (rows_ + 1), row-major.
+  std::vector<std::uint32_t> sums_;
 };
 
 }  // namespace fireswarm::sim2d

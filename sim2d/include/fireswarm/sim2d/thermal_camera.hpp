@@ -131,6 +131,7 @@ class ThermalCamera {
   std::vector<float> temperatures_c_;
   std::vector<Eigen::Vector2d> corner_ground_;
   std::vector<std::uint8_t> corner_kind_;
+  HotCellMask hot_mask_;  // the frame's hot cells, rebuilt per frame with fire in view
   // For a frame of plain ground (fixed gain): a few compares per pixel.
   UniformGrey uniform_grey_;
   float uniform_grey_ambient_c_ = std::numeric_limits<float>::quiet_NaN();
