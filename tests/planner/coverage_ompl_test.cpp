@@ -5,22 +5,17 @@
 #include <boost/geometry.hpp>  // buffer and its strategies
 
 #include "coverage.hpp"
+#include "planner_test_helpers.hpp"
 #include "transit.hpp"
-
 namespace fireswarm::planner {
 namespace {
+
+using testing::Rect;
 
 namespace bg = boost::geometry;
 
 constexpr double kSweepWidthM = 50.0;
 constexpr double kFootprintWidthM = kSweepWidthM / 0.9;  // 10 % side overlap
-
-Polygon Rectangle(double x0, double y0, double x1, double y1) {
-  Polygon p;
-  p.outer() = {{x0, y0}, {x0, y1}, {x1, y1}, {x1, y0}, {x0, y0}};
-  bg::correct(p);
-  return p;
-}
 
 // The fraction of `region` within half a footprint of `path` (a footprint swept
 // along the path, round at the turns).
@@ -44,12 +39,12 @@ struct Scene {
 // splits the upper part: legs between viewpoints must go around it.
 Scene TestScene() {
   Scene scene;
-  MultiPolygon block{Rectangle(0, 0, 1'000, 400)};
-  MultiPolygon upper{Rectangle(0, 400, 500, 800)};
+  MultiPolygon block{Rect(0, 0, 1'000, 400)};
+  MultiPolygon upper{Rect(0, 400, 500, 800)};
   MultiPolygon both;
   bg::union_(block, upper, both);
-  scene.no_fly = {Rectangle(200, 450, 260, 900)};
-  const MultiPolygon lake{Rectangle(600, 100, 800, 250)};
+  scene.no_fly = {Rect(200, 450, 260, 900)};
+  const MultiPolygon lake{Rect(600, 100, 800, 250)};
   MultiPolygon without_lake;
   bg::difference(both, lake, without_lake);
   bg::difference(without_lake, scene.no_fly, scene.region);
@@ -82,7 +77,7 @@ TEST(CoverOmpl, IsDeterministic) {
 
 TEST(CoverOmpl, RejectsANonPositiveSweepWidthAndHandlesAnEmptyRegion) {
   const TransitPlanner transit({}, Box({0, 0}, {10, 10}), 1);
-  EXPECT_THROW(CoverOmpl({Rectangle(0, 0, 10, 10)}, 0.0, Point(0, 0), transit, 1),
+  EXPECT_THROW(CoverOmpl({Rect(0, 0, 10, 10)}, 0.0, Point(0, 0), transit, 1),
                std::invalid_argument);
   EXPECT_TRUE(CoverOmpl({}, kSweepWidthM, Point(0, 0), transit, 1).empty());
 }

@@ -7,9 +7,11 @@
 
 #include "fireswarm/planner/plan.hpp"
 #include "lanes.hpp"
-
+#include "planner_test_helpers.hpp"
 namespace fireswarm::planner {
 namespace {
+
+using testing::Fleet;
 
 namespace bg = boost::geometry;
 
@@ -18,15 +20,6 @@ Polygon Ring(std::vector<Point> points) {
   p.outer().assign(points.begin(), points.end());
   bg::correct(p);
   return p;
-}
-
-FleetSpec Fleet(int drones, Point launch) {
-  FleetSpec fleet;
-  for (int i = 1; i <= drones; ++i) fleet.receiver_ids.push_back(i);
-  fleet.launch_points = {launch};
-  fleet.camera = &common::CameraModelByName("seed");
-  fleet.endurance_s = 1e6;
-  return fleet;
 }
 
 void ExpectBalancedContiguousCover(const MultiPolygon& shape, const FleetSpec& fleet) {

@@ -5,16 +5,13 @@
 #include <boost/geometry.hpp>
 #include <cmath>
 
+#include "planner_test_helpers.hpp"
 namespace fireswarm::planner {
 namespace {
 
-namespace bg = boost::geometry;
+using testing::Rect;
 
-Polygon Rect(double x0, double y0, double x1, double y1) {
-  Polygon p{{{x0, y0}, {x0, y1}, {x1, y1}, {x1, y0}, {x0, y0}}};
-  bg::correct(p);
-  return p;
-}
+namespace bg = boost::geometry;
 
 MultiPolygon Block() {
   return MultiPolygon{Rect(400, -300, 600, 300)};
