@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <boost/geometry.hpp>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -11,6 +12,11 @@ namespace fireswarm::planner {
 namespace bg = boost::geometry;
 
 namespace {
+
+// Whole seconds, for messages.
+std::string Seconds(double seconds) {
+  return std::to_string(std::llround(seconds)) + " s";
+}
 
 std::string Where(Point p) {
   return "(" + std::to_string(static_cast<long long>(p.x())) + " m E, " +
@@ -94,10 +100,12 @@ Flight FlyShare(const Route& route, const Share& share, Point launch, double end
       continue;
     }
     if (k == sortie_first) {
-      throw std::runtime_error(
-          "endurance_s " + std::to_string(endurance_s) + " is too short: flying from launch to " +
-          Where(points[k]) + ", on to " + Where(points[k + 1]) + " and back takes " +
-          std::to_string(next_s + home_s(points[k + 1])) + " s even in a sortie of its own");
+      throw std::runtime_error("endurance_s " + Seconds(endurance_s) +
+                               " is too short: flying from launch to " + Where(points[k]) +
+                               ", on to " + Where(points[k + 1]) + " and back takes " +
+                               Seconds(next_s + home_s(points[k + 1])) +
+                               " even in a sortie of its own (lanes are not "
+                               "split between sorties)");
     }
     builder.Transit(transit.Plan(points[k], launch), true);
     out = transit.Plan(launch, points[k]);
