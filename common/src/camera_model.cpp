@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
+#include <string>
 
 namespace fireswarm::common {
 namespace {
@@ -21,6 +22,10 @@ double VfovFromHfovDeg(double hfov_deg, int width_px, int height_px) {
 // saturates at about 140 C. The seed camera (thesis Table 4.1 and section 7.3):
 // 96x64 pixels, 75 x 60 deg; its rate and noise are not stated, so they follow
 // the Lepton-class sensors the thesis compares it with.
+double Radians(double degrees) {
+  return degrees * std::numbers::pi / 180.0;
+}
+
 const std::array<CameraModel, 3> kModels = {{
     {"seed", 96, 64, 75.0, 60.0, 9.0, 0.1, 150.0},
     {"amg8833", 8, 8, 60.0, 60.0, 10.0, 0.25, 80.0},
@@ -53,6 +58,25 @@ const CameraModel& CameraModelByName(std::string_view name) {
   if (const CameraModel* model = FindCameraModel(name)) return *model;
   throw std::invalid_argument("unknown camera model '" + std::string(name) +
                               "' (known: " + CameraModelNames() + ")");
+}
+
+double FootprintWidthM(const CameraModel& camera, double altitude_m, double pitch_deg) {
+  if (!(altitude_m > 0.0) || !std::isfinite(altitude_m)) {
+    throw std::invalid_argument("altitude_m must be > 0, got " + std::to_string(altitude_m));
+  }
+  if (!(pitch_deg >= -90.0 && pitch_deg < 0.0)) {
+    throw std::invalid_argument(
+        "camera_pitch_deg must be in [-90, 0) (down from the horizon), got " +
+        std::to_string(pitch_deg));
+  }
+  const double depression_rad = Radians(-pitch_deg);
+  const double tan_half_h = std::tan(Radians(camera.hfov_deg) / 2.0);
+  const double tan_half_v = std::tan(Radians(camera.vfov_deg) / 2.0);
+  // A ray through image row b (b = tan of its angle above the axis) meets the
+  // ground at range h / (sin d - b cos d) along the axis; the near edge is b = -tan(vfov/2).
+  const double near_edge_denominator =
+      std::sin(depression_rad) + tan_half_v * std::cos(depression_rad);
+  return 2.0 * altitude_m * tan_half_h / near_edge_denominator;
 }
 
 }  // namespace fireswarm::common

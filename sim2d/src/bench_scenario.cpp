@@ -1,7 +1,6 @@
 #include "fireswarm/sim2d/bench_scenario.hpp"
 
 #include <cmath>
-#include <numbers>
 #include <stdexcept>
 #include <string>
 
@@ -16,16 +15,16 @@ constexpr int kAltitudeLayers = 4;
 constexpr double kLayerSpacingM = 5.0;
 constexpr double kLaneOverlap = 0.1;
 constexpr double kMetresPerKm = 1'000.0;
+constexpr double kNadirPitchDeg = -90.0;
 
 [[noreturn]] void Bad(const std::string& field, const std::string& problem) {
   throw std::invalid_argument("bench scenario: " + field + " " + problem);
 }
 
-// Across-track width a nadir camera sees at `altitude_m`.
+// Across-track width a nadir camera sees at `altitude_m` ("none": the altitude).
 double FootprintWidthM(const std::string& camera, double altitude_m) {
   if (camera == "none") return altitude_m;
-  const double half_fov_rad = common::CameraModelByName(camera).hfov_deg * std::numbers::pi / 360.0;
-  return 2.0 * altitude_m * std::tan(half_fov_rad);
+  return common::FootprintWidthM(common::CameraModelByName(camera), altitude_m, kNadirPitchDeg);
 }
 
 }  // namespace

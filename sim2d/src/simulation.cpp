@@ -7,6 +7,7 @@
 
 #include "fireswarm/common/camera_model.hpp"
 #include "fireswarm/sim2d/random.hpp"
+#include "world_hash.hpp"
 
 namespace fireswarm::sim2d {
 namespace {
@@ -21,14 +22,6 @@ constexpr double kFrameDueToleranceS = 1e-9;
 // The fire grid's area as a ground box (for random distractors).
 GroundBox FireArea(const FireConfig& fire) {
   return {fire.origin_m, fire.origin_m + Vec2(fire.width_m, fire.height_m)};
-}
-
-std::uint64_t Mix(std::uint64_t hash, std::uint64_t value) {
-  constexpr std::uint64_t kFnvPrime = 1099511628211ULL;
-  for (int byte = 0; byte < 8; ++byte) {
-    hash = (hash ^ ((value >> (8 * byte)) & 0xFFU)) * kFnvPrime;
-  }
-  return hash;
 }
 
 }  // namespace
@@ -155,17 +148,18 @@ const ThermalCamera* Simulation::CameraOf(int vehicle_id) const {
 }
 
 std::uint64_t Simulation::StateHash() const {
-  std::uint64_t hash = world_.StateHash();
+  StateHasher hasher;
+  hasher.Add(world_.StateHash());
   for (int row = 0; row < fire_->rows(); ++row) {
     for (int col = 0; col < fire_->cols(); ++col) {
-      hash = Mix(hash, static_cast<std::uint64_t>(fire_->StateAt({col, row})));
+      hasher.Add(static_cast<int>(fire_->StateAt({col, row})));
     }
   }
   for (const CameraSlot& slot : cameras_) {
-    hash = Mix(hash, static_cast<std::uint64_t>(slot.frames));
-    for (const std::uint8_t grey : slot.image.pixels) hash = Mix(hash, grey);
+    hasher.Add(static_cast<std::uint64_t>(slot.frames));
+    for (const std::uint8_t grey : slot.image.pixels) hasher.Add(static_cast<int>(grey));
   }
-  return hash;
+  return hasher.value();
 }
 
 }  // namespace fireswarm::sim2d

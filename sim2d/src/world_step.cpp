@@ -26,6 +26,16 @@ void Level(VehicleTruth& truth) {
   truth.yaw_rate_radps = 0.0;
 }
 
+// The thrust after one motor-lag step toward what the climb loop asks for;
+// nothing once the battery is empty. Needs vehicle.trig of this step.
+double NextThrustN(const VehicleRuntime& vehicle, const VehicleTruth& truth) {
+  const double target_n = vehicle.battery_empty
+                              ? 0.0
+                              : CommandedThrust(vehicle.config.multirotor, vehicle.coefficients,
+                                                vehicle.command, truth, vehicle.trig);
+  return StepThrust(vehicle.coefficients, vehicle.thrust_n, target_n);
+}
+
 }  // namespace
 
 void World::Impl::Step() {
@@ -79,11 +89,7 @@ void World::Impl::PrePhysics(std::size_t index) {
     case FlightPhase::kOnGround: {
       Level(truth);
       vehicle.trig = AttitudeTrig::Of(truth);
-      const double target_n =
-          vehicle.battery_empty
-              ? 0.0
-              : CommandedThrust(params, coefficients, vehicle.command, truth, vehicle.trig);
-      vehicle.thrust_n = StepThrust(coefficients, vehicle.thrust_n, target_n);
+      vehicle.thrust_n = NextThrustN(vehicle, truth);
       vehicle.body->SetLinearVelocity(b2Vec2(0.0F, 0.0F));
       if (vehicle.thrust_n > coefficients.hover_thrust_n) {
         truth.phase = FlightPhase::kFlying;
@@ -94,11 +100,7 @@ void World::Impl::PrePhysics(std::size_t index) {
     case FlightPhase::kFlying: {
       StepAttitude(params, coefficients, vehicle.command, vehicle.faults.ballast_offset_m, truth);
       vehicle.trig = AttitudeTrig::Of(truth);
-      const double target_n =
-          vehicle.battery_empty
-              ? 0.0
-              : CommandedThrust(params, coefficients, vehicle.command, truth, vehicle.trig);
-      vehicle.thrust_n = StepThrust(coefficients, vehicle.thrust_n, target_n);
+      vehicle.thrust_n = NextThrustN(vehicle, truth);
       const Vec2 force_n = HorizontalForce(params, truth, vehicle.trig, vehicle.thrust_n, wind_mps);
       vehicle.body->ApplyForceToCenter(ToB2(force_n), true);
       return;

@@ -35,4 +35,17 @@ const CameraModel& CameraModelByName(std::string_view name);
 /// The known names joined by '|' ("seed|amg8833|lepton35"), for help and errors.
 std::string CameraModelNames();
 
+/// Across-track width in metres of the ground the camera sees, flying level at
+/// `altitude_m` above flat ground with the camera mounted at `pitch_deg` from the
+/// horizon (-90 = straight down, the image's horizontal axis across the track).
+///
+/// Nadir: 2 h tan(hfov / 2). Tilted: the pinhole image row that meets the ground
+/// nearest the drone (the near edge) is the narrowest across the track, so its
+/// width, 2 h tan(hfov / 2) / (sin d + tan(vfov / 2) cos d) with d = -pitch the
+/// depression of the optical axis, is the width seen along the whole image; using
+/// it keeps neighbouring lanes overlapping even at the near edge (conservative).
+/// Throws std::invalid_argument naming `altitude_m` (not > 0) or
+/// `camera_pitch_deg` (not in [-90, 0)).
+double FootprintWidthM(const CameraModel& camera, double altitude_m, double pitch_deg);
+
 }  // namespace fireswarm::common
