@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 
+#include "fireswarm/radio/mission_chunks.hpp"
+
 namespace fireswarm::radio::internal {
 namespace {
 
@@ -99,26 +101,17 @@ FireReport SampleReport(std::uint8_t id, Nanos now) {
 }
 
 void QueueMission(MasterScheduler& server, BenchVehicle& vehicle, int waypoints) {
-  const auto total = static_cast<std::size_t>(waypoints);
-  const std::size_t chunks = (total + kMaxWaypointsPerChunk - 1) / kMaxWaypointsPerChunk;
   const std::uint8_t id = vehicle.endpoint.config().id;
-  for (std::size_t c = 0; c < chunks; ++c) {
-    MissionChunk chunk;
-    chunk.mission_id = kMissionId;
-    chunk.chunk_index = static_cast<std::uint8_t>(c);
-    chunk.chunk_count = static_cast<std::uint8_t>(chunks);
-    chunk.total_waypoints = static_cast<std::uint16_t>(total);
-    const std::size_t first = c * kMaxWaypointsPerChunk;
-    chunk.first_waypoint = static_cast<std::uint16_t>(first);
-    chunk.waypoint_count =
-        static_cast<std::uint8_t>(std::min(kMaxWaypointsPerChunk, total - first));
-    for (std::size_t w = 0; w < chunk.waypoint_count; ++w) {
-      chunk.waypoints[w] = Waypoint{LatOf(id) + kVehicleSpacingDeg * static_cast<double>(w),
-                                    kBaseLonDeg, kAltitudeM, kSpeedMps, 0};
-    }
-    server.SendMissionChunk(id, chunk);
+  std::vector<Waypoint> mission(static_cast<std::size_t>(waypoints));
+  for (std::size_t i = 0; i < mission.size(); ++i) {
+    // Latitude steps restart in every chunk: only the frames' size matters here.
+    const auto in_chunk = static_cast<double>(i % kMaxWaypointsPerChunk);
+    mission[i] =
+        Waypoint{LatOf(id) + kVehicleSpacingDeg * in_chunk, kBaseLonDeg, kAltitudeM, kSpeedMps, 0};
   }
-  vehicle.chunks_left = static_cast<int>(chunks);
+  const std::vector<MissionChunk> chunks = SplitMission(kMissionId, mission);
+  for (const MissionChunk& chunk : chunks) server.SendMissionChunk(id, chunk);
+  vehicle.chunks_left = static_cast<int>(chunks.size());
 }
 
 void Record(const SchedulerEvent& event, Nanos generation_end, Fleet& fleet, Metrics& metrics) {

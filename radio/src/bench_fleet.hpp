@@ -15,9 +15,6 @@
 
 namespace fireswarm::radio::internal {
 
-/// A mission has at most 255 chunks (chunk_count is one byte).
-inline constexpr int kMaxMissionWaypoints = 255 * static_cast<int>(kMaxWaypointsPerChunk);
-
 /// Accepts every command and mission chunk, as a vehicle with a free mission store.
 class BenchHandler final : public VehicleRequestHandler {
  public:
@@ -65,7 +62,8 @@ struct Snapshot {
 Telemetry SampleTelemetry(std::uint8_t id, Nanos now);
 /// A fire report detected by vehicle `id` at `now`.
 FireReport SampleReport(std::uint8_t id, Nanos now);
-/// Queues a `waypoints`-waypoint mission for `vehicle` in chunks; sets chunks_left.
+/// Queues a `waypoints`-waypoint mission (1..kMaxMissionWaypoints) for `vehicle` in
+/// chunks; sets chunks_left.
 void QueueMission(MasterScheduler& server, BenchVehicle& vehicle, int waypoints);
 /// Applies one scheduler event to the bookkeeping.
 void Record(const SchedulerEvent& event, Nanos generation_end, Fleet& fleet, Metrics& metrics);

@@ -10,12 +10,14 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "bench_fleet.hpp"
 #include "fireswarm/radio/channel.hpp"
 #include "fireswarm/radio/link.hpp"
 #include "fireswarm/radio/master_scheduler.hpp"
+#include "fireswarm/radio/mission_chunks.hpp"
 
 namespace fireswarm::radio {
 namespace {
@@ -219,8 +221,8 @@ void RadioBenchConfig::Validate() const {
   if (!(std::isfinite(telemetry_hz) && telemetry_hz > 0.0)) {
     ThrowConfig("telemetry_hz", "> 0", telemetry_hz);
   }
-  if (mission_waypoints < 0 || mission_waypoints > internal::kMaxMissionWaypoints) {
-    ThrowConfig("mission_waypoints", "in 0.." + std::to_string(internal::kMaxMissionWaypoints),
+  if (mission_waypoints < 0 || std::cmp_greater(mission_waypoints, kMaxMissionWaypoints)) {
+    ThrowConfig("mission_waypoints", "in 0.." + std::to_string(kMaxMissionWaypoints),
                 mission_waypoints);
   }
 }

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <functional>
 #include <memory>
+#include <span>
 #include <vector>
 
 #include "fireswarm/radio/channel.hpp"
@@ -46,9 +47,13 @@ inline SchedulerConfig ServerConfig(LinkMode mode) {
   return config;
 }
 
+// Answers with `handler` when given (it must outlive the vehicle), else with its own
+// CountingHandler.
 struct SimVehicle {
-  SimVehicle(SharedChannel& channel, const VehicleEndpointConfig& config)
-      : link(channel, channel.AddRadio()), endpoint(config, handler) {}
+  SimVehicle(SharedChannel& channel, const VehicleEndpointConfig& config,
+             VehicleRequestHandler* external = nullptr)
+      : link(channel, channel.AddRadio()),
+        endpoint(config, external != nullptr ? *external : handler) {}
   CountingHandler handler;
   SimLink link;
   VehicleEndpoint endpoint;
@@ -56,10 +61,12 @@ struct SimVehicle {
 
 // The server and N vehicles on the real SharedChannel, stepped event by event.
 // `drop_reply` and `drop_server_burst` see every burst and may keep it off the air:
-// deterministic loss without mocks.
+// deterministic loss without mocks. Vehicle i (from 1) answers with handlers[i - 1]
+// when given, else with its CountingHandler.
 class SimNet {
  public:
-  SimNet(const SchedulerConfig& config, int vehicles, double loss = 0.0)
+  SimNet(const SchedulerConfig& config, int vehicles, double loss = 0.0,
+         std::span<VehicleRequestHandler* const> handlers = {})
       : channel_(ChannelFor(loss), /*seed=*/7),
         server_link_(channel_, channel_.AddRadio()),
         server_(config) {
@@ -69,7 +76,9 @@ class SimNet {
       v.mode = config.mode;
       v.checksum = config.checksum;
       v.timing = config.timing;
-      vehicles_.push_back(std::make_unique<SimVehicle>(channel_, v));
+      const auto index = static_cast<std::size_t>(i - 1);
+      vehicles_.push_back(std::make_unique<SimVehicle>(
+          channel_, v, index < handlers.size() ? handlers[index] : nullptr));
     }
   }
 
