@@ -167,6 +167,8 @@ void ThermalCamera::Render(const VehicleTruth& vehicle, const TemperatureField& 
   if (options_.gain == GainMode::kFixed) {
     const auto min_c = static_cast<float>(options_.fixed_min_c);
     const auto scale = static_cast<float>(255.0 / (options_.fixed_max_c - options_.fixed_min_c));
+    out.range_min_c = options_.fixed_min_c;
+    out.range_max_c = options_.fixed_max_c;
     if (uniform && !options_.keep_temperatures) {
       SenseUniformGround(UniformGreyFor(ambient_c), noise, out.pixels);
     } else if (uniform) {
@@ -184,6 +186,8 @@ void ThermalCamera::Render(const VehicleTruth& vehicle, const TemperatureField& 
     }
     const auto [lo_c, hi_c] = AutoGainRangeC(temperatures_c_, options_.agc_min_span_k);
     MapWhiteHot(temperatures_c_, lo_c, hi_c, out.pixels);
+    out.range_min_c = lo_c;
+    out.range_max_c = hi_c;
   }
   if (options_.keep_temperatures) {
     out.apparent_temperature_c.assign(temperatures_c_.begin(), temperatures_c_.end());

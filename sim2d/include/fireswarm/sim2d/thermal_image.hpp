@@ -18,6 +18,12 @@ struct ThermalImage {
   int height_px = 0;
   std::vector<std::uint8_t> pixels;  ///< width_px * height_px grey levels, white-hot
   double capture_time_s = 0.0;       ///< simulated time of the exposure
+  /// The temperatures, Celsius, that grey 0 and 255 stand for in this frame (the
+  /// fixed range, or this frame's automatic gain): grey g is
+  /// range_min_c + g / 255 * (range_max_c - range_min_c), as a radiometric camera
+  /// reports with every frame. Both 0 for a frame that did not come from a camera.
+  double range_min_c = 0.0;
+  double range_max_c = 0.0;
   /// Reported temperature per pixel (after noise and saturation), Celsius, same
   /// layout as `pixels`; empty unless the camera was asked to keep it (tests, scoring).
   std::vector<float> apparent_temperature_c;
