@@ -1,0 +1,56 @@
+// The vehicle's own idea of where it is, from its sensors only: position from GPS
+// fixes blended with the integrated GPS velocity (a complementary filter); altitude from the
+// barometer, zeroed on the ground before take-off (the BMP280 reads pressure altitude, not height
+// above the launch site); attitude and battery as measured.
+#pragma once
+
+#include <optional>
+
+#include "fireswarm/agents/vehicle_io.hpp"
+#include "fireswarm/common/local_frame.hpp"
+#include "fireswarm/radio/time.hpp"
+
+namespace fireswarm::agents {
+
+using radio::Nanos;
+
+struct Estimate {
+  bool has_position = false;         ///< a GPS fix has arrived
+  common::LatLon position;           ///< dead-reckoned to the last Update
+  common::EastNorth position_local;  ///< the same, in frame()
+  double velocity_east_mps = 0.0;
+  double velocity_north_mps = 0.0;
+  bool has_altitude = false;
+  double altitude_m = 0.0;  ///< above the ground where ZeroAltitude() was called
+  double climb_rate_mps = 0.0;
+  bool has_attitude = false;
+  AttitudeInput attitude;
+  double battery_v = 0.0;
+  double battery_fraction = 1.0;
+  double gps_age_s = 0.0;  ///< since the last fix
+};
+
+class StateEstimator {
+ public:
+  /// Folds in this step's samples. The local frame is set on the first GPS fix
+  /// (its origin there), so the vehicle needs no configured origin.
+  void Update(Nanos now, const SensorInputs& inputs);
+  /// Takes the current barometric altitude as zero (on the ground, before take-off).
+  void ZeroAltitude();
+
+  const Estimate& estimate() const { return estimate_; }
+  /// Set after the first GPS fix; positions in Estimate are in this frame.
+  const std::optional<common::LocalFrame>& frame() const { return frame_; }
+
+ private:
+  Estimate estimate_;
+  std::optional<common::LocalFrame> frame_;
+  std::optional<Nanos> last_update_;
+  std::optional<Nanos> last_fix_;
+  std::optional<double> baro_raw_m_;
+  std::optional<Nanos> baro_time_;
+  double baro_zero_m_ = 0.0;
+  bool baro_zeroed_ = false;
+};
+
+}  // namespace fireswarm::agents

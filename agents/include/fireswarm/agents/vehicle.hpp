@@ -1,0 +1,141 @@
+// One APOne vehicle (seed chapters 6 and 7) as software: the state estimate, the
+// control cascade and navigation, the mission store, the parameters (the seed's
+// EEPROM), the fire detector and geolocation, and the behaviours (take-off,
+// search, hold, investigate, return to launch, land). It talks to the server only
+// through APOne frames: bytes in through OnRadio(), bursts out for its link. It
+// knows nothing of the simulator: sensors and the camera come in as SensorInputs,
+// commands go out as ActuatorOutputs (the seed's HIL FlightData idea), so the same
+// class flies a simulated plant in-process or behind a serial or UDP link.
+//
+// A pure core: both calls take the time; no clock, no socket. The only I/O is the
+// parameter file, written when a parameter changes.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "fireswarm/agents/control_cascade.hpp"
+#include "fireswarm/agents/fire_detector.hpp"
+#include "fireswarm/agents/loiter.hpp"
+#include "fireswarm/agents/mission_store.hpp"
+#include "fireswarm/agents/navigation.hpp"
+#include "fireswarm/agents/params.hpp"
+#include "fireswarm/agents/state_estimator.hpp"
+#include "fireswarm/agents/vehicle_io.hpp"
+#include "fireswarm/common/camera_model.hpp"
+#include "fireswarm/radio/vehicle_endpoint.hpp"
+
+namespace fireswarm::agents {
+
+struct VehicleConfig {
+  std::uint8_t id = 1;  ///< receiver ID, 1..254 (overrides radio.id)
+  radio::VehicleEndpointConfig radio;
+  /// The parameter file (the seed's EEPROM); empty keeps parameters in memory only.
+  std::filesystem::path param_file;
+  /// The thermal camera carried; its mount pitch is the parameter camera.pitch_deg.
+  common::CameraModel camera = common::CameraModelByName("seed");
+  /// Detector tuning; nullopt takes FireDetectorConfigFor(camera).
+  std::optional<FireDetectorConfig> detector;
+  double navigation_hz = 10.0;  ///< the outer loop's rate (the GPS rate)
+  double telemetry_hz = 10.0;   ///< how often the telemetry answer is refreshed
+  /// Throws std::invalid_argument naming the field when a value is out of range.
+  void Validate() const;
+};
+
+/// Counts of what the vehicle did, for tests and figures.
+struct VehicleStats {
+  std::uint64_t frames_processed = 0;
+  std::uint64_t fires_detected = 0;  ///< reports queued for the server
+  std::uint64_t commands_accepted = 0;
+  std::uint64_t commands_rejected = 0;
+  std::uint64_t link_lost_returns = 0;
+  std::uint64_t low_battery_returns = 0;
+};
+
+class Vehicle final : public radio::VehicleRequestHandler {
+ public:
+  /// Loads the parameter file if it exists. Throws std::invalid_argument for a bad
+  /// configuration, std::runtime_error naming the file when it is corrupt.
+  explicit Vehicle(const VehicleConfig& config);
+
+  /// Bytes heard on the radio up to `now`; returns the replies to transmit. Hearing
+  /// any valid frame for this vehicle or for all resets the link-lost timer.
+  std::vector<radio::Burst> OnRadio(Nanos now, std::span<const std::uint8_t> bytes);
+
+  /// One control step at `now` with this step's sensor samples (and camera frame).
+  ActuatorOutputs Step(Nanos now, const SensorInputs& inputs);
+
+  // VehicleRequestHandler: the server's requests, decoded by the endpoint.
+  radio::CommandResult OnCommand(const radio::Command& command) override;
+  radio::MissionAckStatus OnMissionChunk(const radio::MissionChunk& chunk) override;
+  radio::ParamValue OnParamRead(const radio::ParamRead& read) override;
+  radio::ParamValue OnParamWrite(const radio::ParamWrite& write) override;
+
+  std::uint8_t id() const { return config_.id; }
+  radio::FlightMode mode() const { return mode_; }
+  const Estimate& estimate() const { return estimator_.estimate(); }
+  /// Navigation, once the first GPS fix has set the local frame.
+  const Navigator* navigator() const { return navigator_ ? &*navigator_ : nullptr; }
+  const Loiter& loiter() const { return loiter_; }
+  /// The outer loop's latest set-points (navigation or loiter).
+  const NavigationSetpoint& navigation_setpoint() const { return navigation_setpoint_; }
+  /// The latest commands to the plant.
+  const ActuatorOutputs& outputs() const { return outputs_; }
+  const ParamStore& params() const { return params_; }
+  const MissionStore& missions() const { return missions_; }
+  const FireDetector& detector() const { return detector_; }
+  const radio::VehicleEndpoint& endpoint() const { return endpoint_; }
+  const VehicleStats& stats() const { return stats_; }
+  /// The mission being flown (0 = none).
+  std::uint16_t active_mission() const { return active_mission_; }
+  /// Home: where the vehicle took off (unset before the first take-off).
+  const std::optional<common::LatLon>& home() const { return home_; }
+
+ private:
+  void ApplyParams();
+  void EnterMode(radio::FlightMode mode, Nanos now);
+  void StartRoute(std::vector<RoutePoint> route, std::size_t start_index);
+  void HoldHere(double altitude_m);
+  CascadeSetpoint Behave(Nanos now, std::optional<double> nav_dt_us);
+  double Param(ParamId id) const { return static_cast<double>(params_.Get(id)); }
+  void CheckSafety(Nanos now);
+  void ProcessFrame(Nanos now, const CameraFrame& frame);
+  void UpdateTelemetry(Nanos now);
+  bool Airborne() const;
+  NavigationInput NavInput() const;
+
+  VehicleConfig config_;
+  ParamStore params_;
+  MissionStore missions_;
+  radio::VehicleEndpoint endpoint_;
+  StateEstimator estimator_;
+  ControlCascade cascade_;
+  std::optional<Navigator> navigator_;
+  NavigationConfig navigation_config_;
+  Loiter loiter_;
+  FireDetector detector_;
+  VehicleStats stats_;
+
+  radio::FlightMode mode_ = radio::FlightMode::kIdle;
+  radio::FlightMode mode_before_hold_ = radio::FlightMode::kIdle;
+  Nanos now_{0};
+  Nanos mode_since_{0};
+  std::optional<Nanos> last_heard_;
+  std::optional<Nanos> last_navigation_;
+  std::optional<Nanos> last_telemetry_;
+  std::optional<Nanos> investigate_until_;
+  NavigationSetpoint navigation_setpoint_;
+  ActuatorOutputs outputs_;
+  std::optional<common::LatLon> home_;
+  std::uint16_t active_mission_ = 0;
+  std::size_t resume_index_ = 0;      ///< search waypoint to go back to after hold/investigate
+  double land_low_altitude_m_ = 0.0;  ///< lowest altitude seen while landing
+  Nanos land_progress_at_{0};         ///< when it last fell kLandProgressM lower
+  bool link_lost_ = false;
+  bool low_battery_ = false;
+};
+
+}  // namespace fireswarm::agents

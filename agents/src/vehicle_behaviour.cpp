@@ -1,0 +1,290 @@
+// The vehicle's control step and behaviours: which set-points each flight mode
+// hands the cascade, the commands that switch modes, and the safety rules that
+// override them (return to launch on low battery or a silent server).
+#include <algorithm>
+#include <cmath>
+
+#include "fireswarm/agents/vehicle.hpp"
+
+namespace fireswarm::agents {
+
+namespace {
+
+using radio::FlightMode;
+
+// Take-off ends, and the search starts, this close below the target altitude.
+constexpr double kTakeoffDoneBelowM = 1.5;
+// Return to launch ends, and landing starts, this close to home.
+constexpr double kHomeReachedM = 2.0;
+// Landing slows to this descent rate below kSlowDescentBelowM (touchdown gently:
+// the airframe crashes above 2.5 m/s).
+constexpr double kSlowDescentMps = 0.5;
+constexpr double kSlowDescentBelowM = 3.0;
+// Landed: the (low-passed) altitude has not fallen by kLandProgressM for
+// kLandedAfterS while descending. Works whatever the barometer's drift.
+constexpr double kLandProgressM = 0.2;
+constexpr double kLandedAfterS = 3.0;
+constexpr double kNanosPerMicro = 1e3;
+
+std::vector<RoutePoint> RouteOf(const Mission& mission) {
+  std::vector<RoutePoint> route;
+  route.reserve(mission.waypoints.size());
+  for (const radio::Waypoint& waypoint : mission.waypoints) {
+    RoutePoint point;
+    point.position = {waypoint.lat_deg, waypoint.lon_deg};
+    point.altitude_m = waypoint.altitude_m;
+    point.speed_mps = waypoint.speed_mps;
+    point.lane_start = (waypoint.flags & 1U) != 0;
+    route.push_back(point);
+  }
+  return route;
+}
+
+}  // namespace
+
+bool Vehicle::Airborne() const {
+  return mode_ != FlightMode::kIdle && mode_ != FlightMode::kLanded;
+}
+
+NavigationInput Vehicle::NavInput() const {
+  const Estimate& state = estimator_.estimate();
+  NavigationInput input;
+  input.position = state.position;
+  input.position_local = state.position_local;
+  input.velocity_east_mps = state.velocity_east_mps;
+  input.velocity_north_mps = state.velocity_north_mps;
+  input.heading_rad = state.attitude.heading_rad;
+  return input;
+}
+
+void Vehicle::StartRoute(std::vector<RoutePoint> route, std::size_t start_index) {
+  navigator_->SetRoute(std::move(route), start_index, estimator_.estimate().position);
+}
+
+void Vehicle::HoldHere(double altitude_m) {
+  RoutePoint here;
+  here.position = estimator_.estimate().position;
+  here.altitude_m = altitude_m;
+  StartRoute({here}, 0);
+}
+
+void Vehicle::EnterMode(FlightMode mode, Nanos now) {
+  const Estimate& state = estimator_.estimate();
+  if (mode_ == FlightMode::kSearch && navigator_) resume_index_ = navigator_->waypoint_index();
+  mode_ = mode;
+  mode_since_ = now;
+  switch (mode) {
+    case FlightMode::kTakeoff:
+      home_ = state.position;
+      estimator_.ZeroAltitude();
+      cascade_.Reset();
+      navigator_->ResetWindEstimate();
+      HoldHere(Param(ParamId::kTakeoffAltitudeM));
+      break;
+    case FlightMode::kSearch:
+      StartRoute(RouteOf(*missions_.complete()), resume_index_);
+      break;
+    case FlightMode::kHold:
+      HoldHere(state.altitude_m);
+      break;
+    case FlightMode::kReturnToLaunch: {
+      RoutePoint home;
+      home.position = home_.value_or(state.position);
+      home.altitude_m = std::max(state.altitude_m, Param(ParamId::kTakeoffAltitudeM));
+      StartRoute({home}, 0);
+      break;
+    }
+    case FlightMode::kLand:
+      HoldHere(0.0);
+      land_low_altitude_m_ = state.altitude_m;
+      land_progress_at_ = now;
+      break;
+    case FlightMode::kIdle:
+    case FlightMode::kLanded:
+      cascade_.Reset();
+      break;
+    case FlightMode::kInvestigate:
+      break;  // OnCommand starts the loiter
+  }
+}
+
+radio::CommandResult Vehicle::OnCommand(const radio::Command& command) {
+  using radio::CommandResult;
+  using radio::CommandType;
+  const Estimate& state = estimator_.estimate();
+  const auto accept = [&](FlightMode mode) {
+    EnterMode(mode, now_);
+    ++stats_.commands_accepted;
+    return CommandResult::kAccepted;
+  };
+  const auto reject = [&] {
+    ++stats_.commands_rejected;
+    return CommandResult::kRejected;
+  };
+  switch (command.type) {
+    case CommandType::kStartMission: {
+      // A mission flies only when every chunk of it is stored.
+      if (!missions_.IsComplete(command.mission_id) || !navigator_) return reject();
+      active_mission_ = command.mission_id;
+      resume_index_ = 0;
+      return accept(Airborne() ? FlightMode::kSearch : FlightMode::kTakeoff);
+    }
+    case CommandType::kHold:
+      if (!Airborne() || mode_ == FlightMode::kLand) return reject();
+      if (mode_ != FlightMode::kHold) mode_before_hold_ = mode_;
+      return accept(FlightMode::kHold);
+    case CommandType::kResume: {
+      if (mode_ != FlightMode::kHold && mode_ != FlightMode::kInvestigate) return reject();
+      const FlightMode back = mode_ == FlightMode::kHold ? mode_before_hold_ : FlightMode::kSearch;
+      if (back == FlightMode::kSearch && missions_.complete() == nullptr) return reject();
+      if (back == FlightMode::kInvestigate) return reject();  // its circle is gone: say where
+      return accept(back);
+    }
+    case CommandType::kReturnToLaunch:
+      if (!Airborne()) return reject();
+      return accept(FlightMode::kReturnToLaunch);
+    case CommandType::kLand:
+      if (!Airborne()) return reject();
+      return accept(FlightMode::kLand);
+    case CommandType::kInvestigate: {
+      if (!Airborne() || mode_ == FlightMode::kTakeoff || mode_ == FlightMode::kLand) {
+        return reject();
+      }
+      if (!common::IsValidLatLon({command.lat_deg, command.lon_deg})) return reject();
+      const double radius =
+          command.radius_m > 0.0 ? command.radius_m : Param(ParamId::kLoiterRadiusM);
+      const double altitude = command.altitude_m > 0.0 ? command.altitude_m : state.altitude_m;
+      loiter_.Start(estimator_.frame()->ToLocal({command.lat_deg, command.lon_deg}), radius,
+                    altitude);
+      investigate_until_.reset();
+      if (command.duration_s > 0)
+        investigate_until_ = now_ + std::chrono::seconds(command.duration_s);
+      return accept(FlightMode::kInvestigate);
+    }
+    case CommandType::kAbort:
+      // Stop the mission and come down where it is; on the ground, stay disarmed.
+      if (!Airborne()) {
+        ++stats_.commands_accepted;
+        return CommandResult::kAccepted;
+      }
+      return accept(FlightMode::kLand);
+  }
+  ++stats_.commands_rejected;
+  return CommandResult::kUnsupported;
+}
+
+void Vehicle::CheckSafety(Nanos now) {
+  if (!Airborne() || mode_ == FlightMode::kLand) return;
+  const Estimate& state = estimator_.estimate();
+  if (state.battery_fraction < Param(ParamId::kRtlBatteryFraction) && !low_battery_) {
+    low_battery_ = true;
+    if (mode_ != FlightMode::kReturnToLaunch) {
+      ++stats_.low_battery_returns;
+      EnterMode(FlightMode::kReturnToLaunch, now);
+    }
+  }
+  const Nanos timeout = radio::FromSeconds(Param(ParamId::kLinkLostTimeoutS));
+  const Nanos heard = last_heard_.value_or(mode_since_);
+  if (!link_lost_ && now - heard > timeout) {
+    link_lost_ = true;
+    if (mode_ != FlightMode::kReturnToLaunch) {
+      ++stats_.link_lost_returns;
+      EnterMode(FlightMode::kReturnToLaunch, now);
+    }
+  }
+}
+
+CascadeSetpoint Vehicle::Behave(Nanos now, std::optional<double> nav_dt_us) {
+  const Estimate& state = estimator_.estimate();
+  if (nav_dt_us) {
+    const NavigationInput input = NavInput();
+    navigation_setpoint_ = mode_ == FlightMode::kInvestigate ? loiter_.Step(input, *nav_dt_us)
+                                                             : navigator_->Step(input, *nav_dt_us);
+  }
+  CascadeSetpoint setpoint;
+  setpoint.roll_rad = navigation_setpoint_.roll_rad;
+  setpoint.pitch_rad = navigation_setpoint_.pitch_rad;
+  setpoint.heading_rad = navigation_setpoint_.heading_rad;
+  setpoint.altitude_m = navigation_setpoint_.altitude_m;
+
+  switch (mode_) {
+    case FlightMode::kTakeoff:
+      if (state.altitude_m > Param(ParamId::kTakeoffAltitudeM) - kTakeoffDoneBelowM) {
+        EnterMode(missions_.IsComplete(active_mission_) ? FlightMode::kSearch : FlightMode::kHold,
+                  now);
+      }
+      break;
+    case FlightMode::kSearch:
+      if (navigator_->finished()) EnterMode(FlightMode::kReturnToLaunch, now);
+      break;
+    case FlightMode::kInvestigate:
+      if (investigate_until_ && now >= *investigate_until_) {
+        EnterMode(missions_.IsComplete(active_mission_) ? FlightMode::kSearch : FlightMode::kHold,
+                  now);
+      }
+      break;
+    case FlightMode::kReturnToLaunch: {
+      const common::EastNorth home = estimator_.frame()->ToLocal(home_.value_or(state.position));
+      const double distance = std::hypot(home.east_m - state.position_local.east_m,
+                                         home.north_m - state.position_local.north_m);
+      if (navigator_->finished() && distance < kHomeReachedM) EnterMode(FlightMode::kLand, now);
+      break;
+    }
+    case FlightMode::kLand: {
+      setpoint.climb_rate_mps = state.altitude_m > kSlowDescentBelowM
+                                    ? -Param(ParamId::kLandDescentMps)
+                                    : -std::min(kSlowDescentMps, Param(ParamId::kLandDescentMps));
+      if (state.altitude_m < land_low_altitude_m_ - kLandProgressM) {
+        land_low_altitude_m_ = state.altitude_m;
+        land_progress_at_ = now;
+      } else if (radio::ToSeconds(now - land_progress_at_) > kLandedAfterS) {
+        EnterMode(FlightMode::kLanded, now);
+      }
+      break;
+    }
+    case FlightMode::kHold:
+    case FlightMode::kIdle:
+    case FlightMode::kLanded:
+      break;
+  }
+  return setpoint;
+}
+
+ActuatorOutputs Vehicle::Step(Nanos now, const SensorInputs& inputs) {
+  now_ = std::max(now_, now);
+  estimator_.Update(now, inputs);
+  if (!navigator_ && estimator_.frame())
+    navigator_.emplace(navigation_config_, *estimator_.frame());
+  if (inputs.frame != nullptr) ProcessFrame(now, *inputs.frame);
+  CheckSafety(now);
+
+  std::optional<double> nav_dt_us;
+  const Nanos nav_period = radio::FromSeconds(1.0 / config_.navigation_hz);
+  if (!last_navigation_ || now - *last_navigation_ >= nav_period) {
+    nav_dt_us = last_navigation_
+                    ? static_cast<double>((now - *last_navigation_).count()) / kNanosPerMicro
+                    : static_cast<double>(nav_period.count()) / kNanosPerMicro;
+    last_navigation_ = now;
+  }
+  const Nanos telemetry_period = radio::FromSeconds(1.0 / config_.telemetry_hz);
+  if (!last_telemetry_ || now - *last_telemetry_ >= telemetry_period) {
+    UpdateTelemetry(now);
+    last_telemetry_ = now;
+  }
+  outputs_ = ActuatorOutputs{};
+  if (!Airborne() || !navigator_) return outputs_;
+
+  const CascadeSetpoint setpoint = Behave(now, nav_dt_us);
+  if (!Airborne()) return outputs_;  // just landed
+  const Estimate& state = estimator_.estimate();
+  CascadeInput input;
+  input.roll_rad = state.attitude.roll_rad;
+  input.pitch_rad = state.attitude.pitch_rad;
+  input.heading_rad = state.attitude.heading_rad;
+  input.altitude_m = state.altitude_m;
+  outputs_ = cascade_.Step(now, input, setpoint);
+  outputs_.armed = true;
+  return outputs_;
+}
+
+}  // namespace fireswarm::agents

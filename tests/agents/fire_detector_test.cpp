@@ -1,0 +1,230 @@
+// FireDetector on frames rendered by sim2d's camera: a fire is reported once
+// and where it is; rock and noise never; persistence and the repeat interval.
+#include "fireswarm/agents/fire_detector.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "agents/thermal_scene.hpp"
+
+namespace fireswarm::agents {
+namespace {
+
+using sim2d::Vec2;
+using testing::ThermalScene;
+
+constexpr double kFrameRateHz = 9.0;  // the seed camera
+
+// A camera on a vehicle, a detector, and the reports so far.
+struct Flight {
+  Flight(const common::CameraModel& model, sim2d::ThermalCameraOptions options = {},
+         std::uint64_t seed = 1)
+      : camera(model, {}, options),
+        detector(FireDetectorConfigFor(model)),
+        rng(sim2d::MakeRng(seed, "camera")) {}
+
+  // Renders one frame of `scene` from `v` at `time_s` and runs the detector on it.
+  std::vector<FireDetection> Frame(const ThermalScene& scene, const sim2d::VehicleTruth& v,
+                                   double time_s) {
+    camera.Render(v, scene.field, time_s, rng, image);
+    std::vector<FireDetection> found =
+        detector.Process(time_s, testing::FrameOf(image), testing::PoseOf(v, camera, scene.geo));
+    reports.insert(reports.end(), found.begin(), found.end());
+    return found;
+  }
+
+  sim2d::ThermalCamera camera;
+  FireDetector detector;
+  sim2d::Rng rng;
+  sim2d::ThermalImage image;
+  std::vector<FireDetection> reports;
+};
+
+// One burning forest cell at (500, 500); returns its centre.
+Vec2 LightOneCell(ThermalScene& scene) {
+  scene.fire.AddIgnition({Vec2(500.0, 500.0), 0.0});
+  scene.fire.AdvanceTo(1.0);
+  return scene.fire.CellCenter(*scene.fire.CellAt({500.0, 500.0}));
+}
+
+// Flies north over x = 505 at 100 m, 10 m/s, nose 5 deg down, one frame per
+// 1/9 s from y = 350 to y = 650, the time starting at `t0_s`.
+void FlyNorthOver(Flight& flight, const ThermalScene& scene, double t0_s = 1.0) {
+  for (int k = 0; k <= 270; ++k) {
+    const double dt = k / kFrameRateHz;
+    flight.Frame(scene, testing::Flying({505.0, 350.0 + 10.0 * dt}, 100.0, 0.0, -5.0), t0_s + dt);
+  }
+}
+
+TEST(FireDetector, ReportsAFireOnceWithinAFewMetresOfTruth) {
+  for (const common::CameraModel& model : common::CameraModels()) {
+    SCOPED_TRACE(std::string(model.name));
+    ThermalScene scene;
+    const Vec2 truth = LightOneCell(scene);
+    Flight flight(model);
+    FlyNorthOver(flight, scene);
+    ASSERT_EQ(flight.reports.size(), 1U);
+    const FireDetection& d = flight.reports.front();
+    // A fire smaller than a pixel is located to within half a pixel's footprint
+    // per axis: the AMG8833's pixels are 14.4 m across at 100 m (10.2 m on the
+    // diagonal), the seed camera's 1.6 m, the Lepton's 0.7 m.
+    const double tolerance_m = model.width_px < 16 ? 10.2 : 3.0;
+    EXPECT_LT((scene.Local(d.position) - truth).norm(), tolerance_m);
+    // GPS 2.12 m per axis and attitude errors at 100 m: a few metres.
+    EXPECT_GT(d.sigma_north_m, 2.12);
+    EXPECT_LT(d.sigma_north_m, 6.0);
+    EXPECT_GT(d.sigma_east_m, 2.12);
+    EXPECT_LT(d.sigma_east_m, 6.0);
+    EXPECT_LE(std::abs(d.correlation_ne), 1.0);
+    EXPECT_GE(d.confidence, 0.0);
+    EXPECT_LE(d.confidence, 1.0);
+    EXPECT_NEAR(d.observer_altitude_m, 100.0, 1e-9);
+    EXPECT_GE(d.peak_temperature_c, std::min(150.0, model.max_scene_c) - 1.0);
+    EXPECT_GE(d.pixel_count, 1);
+    // Reported while the fire was in view, as soon as it had been seen three times.
+    const Vec2 observer = scene.Local(d.observer);
+    EXPECT_LT(std::abs(observer.x() - 505.0), 1e-6);
+  }
+}
+
+TEST(FireDetector, SunHeatedRockIsNeverReported) {
+  const std::vector<sim2d::Distractor> rocks = {{Vec2(500.0, 450.0), 8.0, 70.0},
+                                                {Vec2(510.0, 520.0), 3.0, 65.0},
+                                                {Vec2(490.0, 600.0), 5.0, 40.0}};
+  for (const common::CameraModel& model : common::CameraModels()) {
+    for (const bool auto_gain : {false, true}) {
+      SCOPED_TRACE(std::string(model.name) + (auto_gain ? " auto" : " fixed"));
+      ThermalScene scene(rocks);
+      Flight flight(model, auto_gain ? testing::AutoGain() : sim2d::ThermalCameraOptions{});
+      int frames_with_hot_rock = 0;
+      for (int k = 0; k <= 270; ++k) {
+        const double t = k / kFrameRateHz;
+        flight.Frame(scene, testing::Flying({505.0, 350.0 + 10.0 * t}, 100.0, 0.0, -5.0), t);
+        frames_with_hot_rock +=
+            FindHotRegions(testing::FrameOf(flight.image), flight.detector.config().regions).empty()
+                ? 0
+                : 1;
+      }
+      EXPECT_GT(frames_with_hot_rock, 50);  // the rock was seen, as hot...
+      EXPECT_TRUE(flight.reports.empty());  // ...and never reported
+      EXPECT_EQ(flight.detector.candidate_count(), 0U);
+    }
+  }
+}
+
+TEST(FireDetector, SensorNoiseAloneIsNeverReported) {
+  ThermalScene scene;
+  for (const common::CameraModel& model : common::CameraModels()) {
+    for (const bool auto_gain : {false, true}) {
+      for (const std::uint64_t seed : {1U, 2U, 3U}) {
+        SCOPED_TRACE(std::string(model.name) + (auto_gain ? " auto" : " fixed") + " seed " +
+                     std::to_string(seed));
+        Flight flight(model, auto_gain ? testing::AutoGain() : sim2d::ThermalCameraOptions{}, seed);
+        int hot_frames = 0;
+        for (int k = 0; k < 500; ++k) {
+          const double t = k / kFrameRateHz;
+          flight.Frame(scene, testing::Flying({200.0 + t, 300.0}, 100.0, 45.0, -3.0, 1.0), t);
+          hot_frames +=
+              FindHotRegions(testing::FrameOf(flight.image), flight.detector.config().regions)
+                      .empty()
+                  ? 0
+                  : 1;
+        }
+        EXPECT_EQ(hot_frames, 0);
+        EXPECT_TRUE(flight.reports.empty());
+      }
+    }
+  }
+}
+
+TEST(FireDetector, ReportsOnlyAfterPersistFramesInARow) {
+  ThermalScene scene;
+  LightOneCell(scene);
+  Flight flight(common::CameraModelByName("seed"));
+  ASSERT_EQ(flight.detector.config().persist_frames, 3);
+  const sim2d::VehicleTruth over_fire = testing::Flying({505.0, 490.0}, 100.0);
+  const sim2d::VehicleTruth elsewhere = testing::Flying({505.0, 800.0}, 100.0);
+  double t = 1.0;
+  const auto next = [&](const sim2d::VehicleTruth& v) {
+    t += 1.0 / kFrameRateHz;
+    return flight.Frame(scene, v, t);
+  };
+  EXPECT_TRUE(next(over_fire).empty());
+  EXPECT_TRUE(next(over_fire).empty());
+  EXPECT_TRUE(next(elsewhere).empty());  // two in a row, then a gap
+  EXPECT_TRUE(next(over_fire).empty());
+  EXPECT_TRUE(next(over_fire).empty());
+  EXPECT_EQ(flight.detector.candidate_count(), 1U);  // one candidate, remembered across the gap
+  EXPECT_EQ(next(over_fire).size(), 1U);             // the third in a row
+  EXPECT_TRUE(next(over_fire).empty());
+}
+
+TEST(FireDetector, ReportsAgainOnlyAfterTheIntervalAndNeverWhileInView) {
+  ThermalScene scene;
+  LightOneCell(scene);
+  Flight flight(common::CameraModelByName("seed"));
+  const double interval_s = flight.detector.config().report_interval_s;
+  ASSERT_EQ(interval_s, 15.0);
+  const sim2d::VehicleTruth over_fire = testing::Flying({505.0, 490.0}, 100.0);
+  const sim2d::VehicleTruth elsewhere = testing::Flying({505.0, 800.0}, 100.0);
+  // In view 0-30 s, away 30-32 s, in view 32-40 s, away 40-42 s, in view 42-50 s.
+  const auto in_view = [](double t) {
+    return !(t >= 30.0 && t < 32.0) && !(t >= 40.0 && t < 42.0);
+  };
+  std::vector<double> report_times;
+  for (int k = 0; k < 50 * 9; ++k) {
+    const double t = k / kFrameRateHz;
+    for (const FireDetection& d : flight.Frame(scene, in_view(t) ? over_fire : elsewhere, t)) {
+      report_times.push_back(d.time_s);
+    }
+  }
+  // Once at the third frame; not again in the 30 s it stayed in view; again on
+  // its return at 32 s (more than 15 s later); on the return at 42 s only once
+  // 15 s had passed since 32 s.
+  ASSERT_EQ(report_times.size(), 3U);
+  EXPECT_NEAR(report_times[0], 2.0 / 9.0, 1e-9);
+  EXPECT_NEAR(report_times[1], 32.0 + 2.0 / 9.0, 1e-9);
+  EXPECT_GE(report_times[2] - report_times[1], interval_s);
+  EXPECT_LT(report_times[2], report_times[1] + interval_s + 1.0 / kFrameRateHz);
+}
+
+TEST(FireDetector, ForgetsCandidatesLongUnseen) {
+  ThermalScene scene;
+  LightOneCell(scene);
+  Flight flight(common::CameraModelByName("seed"));
+  const sim2d::VehicleTruth over_fire = testing::Flying({505.0, 490.0}, 100.0);
+  const sim2d::VehicleTruth elsewhere = testing::Flying({505.0, 800.0}, 100.0);
+  flight.Frame(scene, over_fire, 0.0);
+  EXPECT_EQ(flight.detector.candidate_count(), 1U);
+  flight.Frame(scene, elsewhere, 4.0);
+  EXPECT_EQ(flight.detector.candidate_count(), 1U);
+  flight.Frame(scene, elsewhere, 6.0);  // unseen for more than forget_after_s (5 s)
+  EXPECT_EQ(flight.detector.candidate_count(), 0U);
+}
+
+TEST(FireDetector, RejectsBadConfigAndTimeGoingBack) {
+  FireDetectorConfig config;
+  config.persist_frames = 0;
+  try {
+    FireDetector detector(config);
+    FAIL() << "persist_frames = 0 was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("persist_frames"), std::string::npos);
+  }
+  config = FireDetectorConfig{};
+  config.regions.min_excess_k = -1.0;
+  EXPECT_THROW(FireDetector{config}, std::invalid_argument);
+
+  ThermalScene scene;
+  Flight flight(common::CameraModelByName("seed"));
+  flight.Frame(scene, testing::Flying({300.0, 300.0}, 100.0), 5.0);
+  EXPECT_THROW(flight.Frame(scene, testing::Flying({300.0, 300.0}, 100.0), 4.0),
+               std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace fireswarm::agents

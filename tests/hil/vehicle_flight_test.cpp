@@ -1,0 +1,108 @@
+// Closed-loop flights of the APOne vehicle in sim2d: take-off and altitude hold,
+// a square mission in both navigation modes, landing back home.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "hil_test_helpers.hpp"
+
+namespace fireswarm::hil {
+namespace {
+
+using radio::FlightMode;
+using sim2d::Vec2;
+using testing::Mission;
+using testing::OneVehicleWorld;
+using testing::WaypointAt;
+
+constexpr double kAltitudeM = 60.0;
+
+agents::VehicleConfig VehicleOne() {
+  agents::VehicleConfig config;
+  config.id = 1;
+  return config;
+}
+
+void SetNavigationMode(Mission& mission, agents::NavigationMode mode) {
+  mission.link.server().WriteParam(1, static_cast<std::uint16_t>(agents::ParamId::kNavMode),
+                                   mode == agents::NavigationMode::kSeed ? 0.0F : 1.0F);
+}
+
+TEST(VehicleFlight, TakesOffAndHoldsAltitude) {
+  Mission mission(OneVehicleWorld());
+  agents::Vehicle& vehicle = mission.AddVehicle(VehicleOne());
+  mission.RunUntil(1.0);  // a GPS fix first: without one the start is refused
+  mission.link.UploadAndStart(1, 7, {WaypointAt(mission, Vec2(0.0, 800.0), kAltitudeM)});
+  // Take off; once the search has begun, hold where it is.
+  while (vehicle.mode() != FlightMode::kSearch && mission.simulation.time_s() < 60.0) {
+    mission.RunUntil(mission.simulation.time_s() + 0.1);
+  }
+  ASSERT_EQ(vehicle.mode(), FlightMode::kSearch);
+  radio::Command hold;
+  hold.type = radio::CommandType::kHold;
+  mission.link.server().SendCommand(1, hold);
+  mission.RunUntil(mission.simulation.time_s() + 10.0);
+  ASSERT_EQ(vehicle.mode(), FlightMode::kHold);
+  double worst_altitude_error = 0.0;
+  const Vec2 held = mission.Truth(1).position_m;
+  double worst_drift = 0.0;
+  mission.RunUntil(mission.simulation.time_s() + 60.0, [&] {
+    worst_altitude_error =
+        std::max(worst_altitude_error, std::abs(mission.Truth(1).altitude_m - kAltitudeM));
+    worst_drift = std::max(worst_drift, (mission.Truth(1).position_m - held).norm());
+  });
+  std::printf("hold 60 s at %.0f m: worst altitude error %.2f m, worst drift %.2f m\n", kAltitudeM,
+              worst_altitude_error, worst_drift);
+  EXPECT_LT(worst_altitude_error, 2.0);  // barometer noise and bias drift included
+  EXPECT_LT(worst_drift, 5.0);           // GPS bias wanders under the hold
+  EXPECT_EQ(vehicle.mode(), FlightMode::kHold);
+}
+
+// A 200 m square at 60 m, flown in `mode`; returns, per corner, the closest the
+// vehicle came to it (truth), and leaves the vehicle landed back home.
+std::vector<double> FlySquare(agents::NavigationMode mode, double* final_distance_home_m) {
+  Mission mission(OneVehicleWorld());
+  agents::Vehicle& vehicle = mission.AddVehicle(VehicleOne());
+  SetNavigationMode(mission, mode);
+  mission.RunUntil(1.0);
+  const std::vector<Vec2> corners = {Vec2(0, 200), Vec2(200, 200), Vec2(200, 0), Vec2(0, 0)};
+  std::vector<radio::Waypoint> waypoints;
+  for (const Vec2& corner : corners) waypoints.push_back(WaypointAt(mission, corner, kAltitudeM));
+  mission.link.UploadAndStart(1, 3, waypoints);
+  std::vector<double> closest(corners.size(), 1e9);
+  mission.RunUntil(400.0, [&] {
+    for (std::size_t i = 0; i < corners.size(); ++i) {
+      closest[i] = std::min(closest[i], (mission.Truth(1).position_m - corners[i]).norm());
+    }
+  });
+  EXPECT_EQ(vehicle.mode(), FlightMode::kLanded);
+  EXPECT_EQ(mission.simulation.world().events().size() > 0, true);
+  *final_distance_home_m = mission.Truth(1).position_m.norm();
+  return closest;
+}
+
+TEST(VehicleFlight, SeedModeReachesEveryCornerOfASquare) {
+  double home_m = 0.0;
+  const std::vector<double> closest = FlySquare(agents::NavigationMode::kSeed, &home_m);
+  for (std::size_t i = 0; i < closest.size(); ++i) {
+    std::printf("seed mode: corner %zu passed at %.2f m\n", i, closest[i]);
+    // The seed switches waypoints inside 10 m of its GPS estimate.
+    EXPECT_LT(closest[i], 10.0 + 5.0) << "corner " << i;
+  }
+  EXPECT_LT(home_m, 6.0);
+}
+
+TEST(VehicleFlight, TrackModeReachesEveryCornerOfASquare) {
+  double home_m = 0.0;
+  const std::vector<double> closest = FlySquare(agents::NavigationMode::kTrack, &home_m);
+  for (std::size_t i = 0; i < closest.size(); ++i) {
+    std::printf("track mode: corner %zu passed at %.2f m\n", i, closest[i]);
+    EXPECT_LT(closest[i], 5.0) << "corner " << i;
+  }
+  EXPECT_LT(home_m, 6.0);
+}
+
+}  // namespace
+}  // namespace fireswarm::hil
