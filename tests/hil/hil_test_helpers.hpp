@@ -49,10 +49,11 @@ inline sim2d::SimulationConfig OneVehicleWorld(sim2d::Vec2 launch_m = sim2d::Vec
 /// The server end of the radio and the vehicles' radios on one SharedChannel.
 class GroundLink {
  public:
-  GroundLink()
-      : channel_(radio::ChannelConfig{}, /*seed=*/3),
+  explicit GroundLink(const radio::ChannelConfig& channel = {},
+                      const radio::SchedulerConfig& server = {})
+      : channel_(channel, /*seed=*/3),
         server_link_(channel_, channel_.AddRadio()),
-        server_(radio::SchedulerConfig{}) {}
+        server_(server) {}
 
   /// Registers `vehicle` with telemetry at `telemetry_hz`.
   void Add(agents::Vehicle& vehicle, double telemetry_hz = 2.0) {
@@ -61,6 +62,7 @@ class GroundLink {
   }
 
   radio::MasterScheduler& server() { return server_; }
+  const radio::SharedChannel& channel() const { return channel_; }
 
   /// Uploads `waypoints` as mission `mission_id` and queues its start (which the
   /// vehicle refuses until it has a GPS fix).
@@ -123,7 +125,9 @@ class GroundLink {
 
 /// A simulation, its vehicles and the ground link, stepped together.
 struct Mission {
-  explicit Mission(const sim2d::SimulationConfig& config) : simulation(config), fleet(simulation) {}
+  explicit Mission(const sim2d::SimulationConfig& config, const radio::ChannelConfig& channel = {},
+                   const radio::SchedulerConfig& server = {})
+      : simulation(config), fleet(simulation), link(channel, server) {}
 
   agents::Vehicle& AddVehicle(agents::VehicleConfig config) {
     vehicles.push_back(std::make_unique<agents::Vehicle>(config));

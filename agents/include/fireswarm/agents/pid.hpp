@@ -50,6 +50,8 @@ class Pid {
   /// seed set_output_Limits(min, max). Requires min <= max.
   void SetOutputLimits(double min, double max);
   void SetAntiWindup(AntiWindup mode) { anti_windup_ = mode; }
+  /// Turns the three clamps off again (the state after construction).
+  void ClearLimits() { i_limit_ = d_limit_ = output_limit_ = PidLimit{}; }
 
   /// seed updatePID(feedback, desire, dt): one controller step. `dt_us` is the time
   /// since the previous call in microseconds; below 1 it is taken as 1 (the seed's
