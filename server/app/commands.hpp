@@ -11,5 +11,6 @@ int RunRadioDecode(const std::vector<std::string>& args);
 int RunRadioBench(const std::vector<std::string>& args);
 int RunPlan(const std::vector<std::string>& args);
 int RunSimBench(const std::vector<std::string>& args);
+int RunVehicle(const std::vector<std::string>& args);
 
 }  // namespace fireswarm::app

@@ -24,6 +24,8 @@ constexpr std::array kCommands{
             fireswarm::app::RunRadioDecode},
     Command{"sim-bench", "fly N drones with thermal cameras over a burning area; print the speed",
             fireswarm::app::RunSimBench},
+    Command{"vehicle", "fly one simulated vehicle behind a real serial or UDP link (HIL)",
+            fireswarm::app::RunVehicle},
 };
 
 void PrintUsage(std::ostream& out) {

@@ -24,7 +24,8 @@ TEST(FireswarmMain, HelpListsEverySubcommand) {
 }
 
 TEST(FireswarmMain, EverySubcommandHasHelp) {
-  for (const std::string command : {"radio-bench", "radio-decode"}) {
+  for (const std::string command :
+       {"plan", "radio-bench", "radio-decode", "sim-bench", "vehicle"}) {
     const RunResult help = RunFireswarm(command + " --help");
     EXPECT_EQ(help.exit_code, 0) << command;
     EXPECT_TRUE(Contains(help, "usage: fireswarm " + command)) << command;
