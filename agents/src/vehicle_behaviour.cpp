@@ -131,7 +131,11 @@ radio::CommandResult Vehicle::OnCommand(const radio::Command& command) {
     }
     case CommandType::kHold:
       if (!Airborne() || mode_ == FlightMode::kLand) return reject();
-      if (mode_ != FlightMode::kHold) mode_before_hold_ = mode_;
+      // Resuming goes back to what was interrupted; a take-off resumes as the
+      // search it was leading to (take-off again would re-zero home in the air).
+      if (mode_ != FlightMode::kHold) {
+        mode_before_hold_ = mode_ == FlightMode::kTakeoff ? FlightMode::kSearch : mode_;
+      }
       return accept(FlightMode::kHold);
     case CommandType::kResume: {
       if (mode_ != FlightMode::kHold && mode_ != FlightMode::kInvestigate) return reject();

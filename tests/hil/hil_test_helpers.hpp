@@ -80,8 +80,11 @@ class GroundLink {
   /// Runs the channel, the server and the vehicles' radio sides up to `end`.
   void RunUntil(Nanos end) {
     while (true) {
+      // A request queued between calls makes the server due at once, which may be
+      // before where the channel's time already is.
       const Nanos t =
-          std::min(server_.NextWakeup(), channel_.NextEventTime().value_or(Nanos::max()));
+          std::max(channel_.now(),
+                   std::min(server_.NextWakeup(), channel_.NextEventTime().value_or(Nanos::max())));
       if (t > end) break;
       channel_.AdvanceTo(t);
       std::vector<std::uint8_t> bytes;

@@ -60,6 +60,31 @@ TEST(VehicleFlight, TakesOffAndHoldsAltitude) {
   EXPECT_EQ(vehicle.mode(), FlightMode::kHold);
 }
 
+TEST(VehicleFlight, HoldDuringTakeOffThenResumeFliesTheMission) {
+  Mission mission(OneVehicleWorld());
+  agents::Vehicle& vehicle = mission.AddVehicle(VehicleOne());
+  mission.RunUntil(1.0);
+  mission.link.UploadAndStart(1, 7, {WaypointAt(mission, Vec2(0.0, 300.0), kAltitudeM)});
+  testing::RunUntilOr(mission, 30.0, [&] { return mission.Truth(1).altitude_m > 20.0; });
+  ASSERT_EQ(vehicle.mode(), FlightMode::kTakeoff);
+  radio::Command command;
+  command.type = radio::CommandType::kHold;
+  mission.link.server().SendCommand(1, command);
+  mission.RunUntil(mission.simulation.time_s() + 5.0);
+  EXPECT_EQ(vehicle.mode(), FlightMode::kHold);
+  const double held_altitude_m = mission.Truth(1).altitude_m;
+  command.type = radio::CommandType::kResume;
+  mission.link.server().SendCommand(1, command);
+  mission.RunUntil(mission.simulation.time_s() + 2.0);
+  EXPECT_EQ(vehicle.mode(), FlightMode::kSearch);
+  // Home and the altitude zero stay where the take-off set them.
+  EXPECT_NEAR(vehicle.estimate().altitude_m, mission.Truth(1).altitude_m, 2.0);
+  EXPECT_GT(held_altitude_m, 15.0);
+  testing::RunUntilOr(mission, 200.0, [&] { return vehicle.mode() == FlightMode::kLanded; });
+  EXPECT_EQ(vehicle.mode(), FlightMode::kLanded);
+  EXPECT_LT(mission.Truth(1).position_m.norm(), 8.0);
+}
+
 // A 200 m square at 60 m, flown in `mode`; returns, per corner, the closest the
 // vehicle came to it (truth), and leaves the vehicle landed back home.
 std::vector<double> FlySquare(agents::NavigationMode mode, double* final_distance_home_m) {
