@@ -5,7 +5,6 @@
 #include <cassert>
 #include <cmath>
 #include <numbers>
-#include <sstream>
 #include <stdexcept>
 #include <string_view>
 
@@ -18,12 +17,6 @@ constexpr double kDegPerRad = 180.0 / std::numbers::pi;
 // Rays closer to the horizon than this (down component of the unnormalised ray)
 // do not meet the ground at a meaningful distance.
 constexpr double kMinDownRay = 1e-9;
-
-[[noreturn]] void Reject(std::string_view field, double value, std::string_view rule) {
-  std::ostringstream message;
-  message << "camera geometry: " << field << " = " << value << " " << rule;
-  throw std::invalid_argument(message.str());
-}
 
 // Body FRD -> NED: heading about down, then pitch, then roll (as sim2d's camera).
 Eigen::Matrix3d NedFromBody(double roll_rad, double pitch_rad, double heading_rad) {
@@ -68,17 +61,7 @@ InputVector InputsOf(const ObserverPose& pose, ImagePoint pixel) {
 }  // namespace
 
 CameraGeometry GeometryOf(const common::CameraModel& model, double camera_pitch_deg) {
-  if (model.width_px <= 0) Reject("width_px", model.width_px, "must be > 0");
-  if (model.height_px <= 0) Reject("height_px", model.height_px, "must be > 0");
-  if (!(model.hfov_deg > 0.0 && model.hfov_deg < 180.0)) {
-    Reject("hfov_deg", model.hfov_deg, "must be in (0, 180)");
-  }
-  if (!(model.vfov_deg > 0.0 && model.vfov_deg < 180.0)) {
-    Reject("vfov_deg", model.vfov_deg, "must be in (0, 180)");
-  }
-  if (!(camera_pitch_deg >= -90.0 && camera_pitch_deg <= 0.0)) {
-    Reject("camera_pitch_deg", camera_pitch_deg, "must be in [-90, 0] (negative down)");
-  }
+  common::ValidateCamera(model, camera_pitch_deg, "camera geometry");
   CameraGeometry geometry;
   geometry.width_px = model.width_px;
   geometry.height_px = model.height_px;

@@ -3,6 +3,7 @@
 #include <array>
 #include <cmath>
 #include <numbers>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -77,6 +78,27 @@ double FootprintWidthM(const CameraModel& camera, double altitude_m, double pitc
   const double near_edge_denominator =
       std::sin(depression_rad) + tan_half_v * std::cos(depression_rad);
   return 2.0 * altitude_m * tan_half_h / near_edge_denominator;
+}
+
+void ValidateCamera(const CameraModel& model, double camera_pitch_deg, std::string_view context) {
+  const auto reject = [&](std::string_view field, double value, std::string_view rule) {
+    std::ostringstream message;
+    message << context << ": " << field << " = " << value << " " << rule;
+    throw std::invalid_argument(message.str());
+  };
+  if (model.width_px <= 0) reject("width_px", model.width_px, "must be > 0");
+  if (model.height_px <= 0) reject("height_px", model.height_px, "must be > 0");
+  if (!(model.hfov_deg > 0.0 && model.hfov_deg < 180.0)) {
+    reject("hfov_deg", model.hfov_deg, "must be in (0, 180)");
+  }
+  if (!(model.vfov_deg > 0.0 && model.vfov_deg < 180.0)) {
+    reject("vfov_deg", model.vfov_deg, "must be in (0, 180)");
+  }
+  if (!(model.netd_k >= 0.0)) reject("netd_k", model.netd_k, "must be >= 0");
+  if (!std::isfinite(model.max_scene_c)) reject("max_scene_c", model.max_scene_c, "must be finite");
+  if (!(camera_pitch_deg >= -90.0 && camera_pitch_deg <= 0.0)) {
+    reject("camera_pitch_deg", camera_pitch_deg, "must be in [-90, 0] (negative down)");
+  }
 }
 
 }  // namespace fireswarm::common

@@ -19,19 +19,6 @@ constexpr double kRadPerDeg = std::numbers::pi / 180.0;
   throw std::invalid_argument(message.str());
 }
 
-void ValidateModel(const common::CameraModel& model) {
-  if (model.width_px <= 0) Reject("width_px", model.width_px, "must be > 0");
-  if (model.height_px <= 0) Reject("height_px", model.height_px, "must be > 0");
-  if (!(model.hfov_deg > 0.0 && model.hfov_deg < 180.0)) {
-    Reject("hfov_deg", model.hfov_deg, "must be in (0, 180)");
-  }
-  if (!(model.vfov_deg > 0.0 && model.vfov_deg < 180.0)) {
-    Reject("vfov_deg", model.vfov_deg, "must be in (0, 180)");
-  }
-  if (!(model.netd_k >= 0.0)) Reject("netd_k", model.netd_k, "must be >= 0");
-  if (!std::isfinite(model.max_scene_c)) Reject("max_scene_c", model.max_scene_c, "must be finite");
-}
-
 void ValidateOptions(const ThermalCameraOptions& options, double saturation_c) {
   if (!std::isfinite(options.fixed_min_c)) {
     Reject("fixed_min_c", options.fixed_min_c, "must be finite");
@@ -66,10 +53,7 @@ Eigen::Matrix3d BodyToEnu(const VehicleTruth& v) {
 ThermalCamera::ThermalCamera(const common::CameraModel& model, CameraMount mount,
                              ThermalCameraOptions options)
     : model_(model), mount_(mount), options_(options) {
-  ValidateModel(model_);
-  if (!(mount_.camera_pitch_deg >= -90.0 && mount_.camera_pitch_deg <= 0.0)) {
-    Reject("camera_pitch_deg", mount_.camera_pitch_deg, "must be in [-90, 0] (negative down)");
-  }
+  common::ValidateCamera(model_, mount_.camera_pitch_deg, "thermal camera");
   ValidateOptions(options_, model_.max_scene_c);
   if (std::isnan(options_.fixed_max_c)) options_.fixed_max_c = model_.max_scene_c;
   fx_px_ = 0.5 * model_.width_px / std::tan(0.5 * model_.hfov_deg * kRadPerDeg);

@@ -11,6 +11,7 @@
 #include "fireswarm/agents/geolocation.hpp"
 #include "fireswarm/agents/vehicle_io.hpp"
 #include "fireswarm/common/local_frame.hpp"
+#include "fireswarm/hil/sim_bridge.hpp"
 #include "fireswarm/sim2d/fire_grid.hpp"
 #include "fireswarm/sim2d/temperature_field.hpp"
 #include "fireswarm/sim2d/thermal_camera.hpp"
@@ -60,15 +61,10 @@ inline sim2d::VehicleTruth Flying(sim2d::Vec2 position_m, double altitude_m,
   return v;
 }
 
-/// The vehicle's view of a sim2d image (valid while `image` lives).
+/// The vehicle's view of a sim2d image (valid while `image` lives), as the HIL
+/// bridge converts it.
 inline CameraFrame FrameOf(const sim2d::ThermalImage& image) {
-  CameraFrame frame;
-  frame.width_px = image.width_px;
-  frame.height_px = image.height_px;
-  frame.pixels = image.pixels;
-  frame.range_min_c = image.range_min_c;
-  frame.range_max_c = image.range_max_c;
-  return frame;
+  return hil::ToCameraFrame(image);
 }
 
 /// The pose a perfect estimator would give for `v` seen through `camera`.

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <stdexcept>
+#include <string>
 
 namespace fireswarm::common {
 namespace {
@@ -33,6 +34,39 @@ TEST(CameraModel, UnknownNameIsAClearError) {
   } catch (const std::invalid_argument& error) {
     EXPECT_STREQ(error.what(), "unknown camera model 'flir' (known: seed|amg8833|lepton35)");
   }
+}
+
+TEST(ValidateCamera, AcceptsEveryKnownModelOnEveryMount) {
+  for (const CameraModel& model : CameraModels()) {
+    for (const double pitch_deg : {-90.0, -45.0, 0.0}) {
+      EXPECT_NO_THROW(ValidateCamera(model, pitch_deg, "test")) << model.name << " " << pitch_deg;
+    }
+  }
+}
+
+TEST(ValidateCamera, NamesTheContextAndTheFirstBadField) {
+  const auto message = [](const CameraModel& model, double pitch_deg) {
+    try {
+      ValidateCamera(model, pitch_deg, "thermal camera");
+    } catch (const std::invalid_argument& error) {
+      return std::string(error.what());
+    }
+    return std::string("no error");
+  };
+  const CameraModel seed = CameraModelByName("seed");
+  CameraModel bad = seed;
+  bad.width_px = 0;
+  EXPECT_EQ(message(bad, -90.0), "thermal camera: width_px = 0 must be > 0");
+  bad = seed;
+  bad.vfov_deg = 180.0;
+  EXPECT_EQ(message(bad, -90.0), "thermal camera: vfov_deg = 180 must be in (0, 180)");
+  bad = seed;
+  bad.netd_k = -0.1;
+  EXPECT_EQ(message(bad, -90.0), "thermal camera: netd_k = -0.1 must be >= 0");
+  EXPECT_EQ(message(seed, 10.0),
+            "thermal camera: camera_pitch_deg = 10 must be in [-90, 0] (negative down)");
+  EXPECT_EQ(message(seed, -91.0),
+            "thermal camera: camera_pitch_deg = -91 must be in [-90, 0] (negative down)");
 }
 
 }  // namespace

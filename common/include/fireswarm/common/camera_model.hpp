@@ -35,6 +35,12 @@ const CameraModel& CameraModelByName(std::string_view name);
 /// The known names joined by '|' ("seed|amg8833|lepton35"), for help and errors.
 std::string CameraModelNames();
 
+/// Checks a camera model and its mount pitch (degrees from the horizon, in [-90, 0],
+/// -90 straight down). Throws std::invalid_argument "<context>: <field> = <value>
+/// <rule>" naming the first bad field: width_px, height_px, hfov_deg, vfov_deg
+/// (in (0, 180)), netd_k, max_scene_c or camera_pitch_deg.
+void ValidateCamera(const CameraModel& model, double camera_pitch_deg, std::string_view context);
+
 /// Across-track width in metres of the ground the camera sees, flying level at
 /// `altitude_m` above flat ground with the camera mounted at `pitch_deg` from the
 /// horizon (-90 = straight down, the image's horizontal axis across the track).
