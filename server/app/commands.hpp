@@ -12,5 +12,6 @@ int RunRadioBench(const std::vector<std::string>& args);
 int RunPlan(const std::vector<std::string>& args);
 int RunSimBench(const std::vector<std::string>& args);
 int RunVehicle(const std::vector<std::string>& args);
+int RunParams(const std::vector<std::string>& args);
 
 }  // namespace fireswarm::app
