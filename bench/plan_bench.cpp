@@ -18,6 +18,7 @@
 //
 //   plan_bench [--areas DIR] [--only NAME[,NAME...]] [--drones 4,20]
 //              [--planners lawnmower,ompl] [--json] [--check] [--check-ratio]
+#include <algorithm>
 #include <boost/geometry/algorithms/area.hpp>
 #include <boost/geometry/strategies/cartesian/area.hpp>
 #include <cstdlib>
@@ -164,8 +165,21 @@ void PrintHeader() {
             << "coverage%" << std::setw(12) << "makespan_s" << std::setw(9) << "ratio"
             << std::setw(8) << "target" << std::setw(11) << "nofly_m" << std::setw(11) << "plan_s"
             << std::setw(9) << "bound_s" << std::setw(9) << "sweep_s" << std::setw(8) << "turn_s"
-            << std::setw(10) << "transit_s"
+            << std::setw(10) << "transit_s" << std::setw(9) << "spread%"
             << "  missed\n";
+}
+
+// (slowest - fastest) / slowest over the drones that fly: the partition's balance.
+double SpreadFraction(const fp::Plan& plan) {
+  double slowest_s = 0.0, fastest_s = 0.0;
+  bool first = true;
+  for (const fp::DronePlan& d : plan.drones) {
+    if (d.time_s <= 0.0) continue;
+    slowest_s = first ? d.time_s : std::max(slowest_s, d.time_s);
+    fastest_s = first ? d.time_s : std::min(fastest_s, d.time_s);
+    first = false;
+  }
+  return slowest_s > 0.0 ? (slowest_s - fastest_s) / slowest_s : 0.0;
 }
 
 // The drone whose time is the makespan.
@@ -190,7 +204,8 @@ void PrintRow(const Row& r) {
             << r.target << std::setw(11) << std::setprecision(1) << p.nofly_violation_m
             << std::setw(11) << std::setprecision(3) << p.planning_seconds << std::setprecision(0)
             << std::setw(9) << p.lower_bound_s << std::setw(9) << slowest.sweep_s << std::setw(8)
-            << slowest.turn_s << std::setw(10) << slowest.transit_s << "  "
+            << slowest.turn_s << std::setw(10) << slowest.transit_s << std::setw(9)
+            << std::setprecision(2) << 100.0 * SpreadFraction(p) << "  "
             << (missed.empty() ? "-" : missed) << std::endl;
 }
 
@@ -209,6 +224,7 @@ nlohmann::ordered_json ToJson(const Row& r) {
           {"slowest_sweep_s", slowest.sweep_s},
           {"slowest_turn_s", slowest.turn_s},
           {"slowest_transit_s", slowest.transit_s},
+          {"spread", SpreadFraction(r.plan)},
           {"missed", r.missed}};
 }
 
