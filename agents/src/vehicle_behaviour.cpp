@@ -26,13 +26,14 @@ constexpr double kLandProgressM = 0.2;
 constexpr double kLandedAfterS = 3.0;
 constexpr double kNanosPerMicro = 1e3;
 
-std::vector<RoutePoint> RouteOf(const Mission& mission) {
+// A waypoint without an altitude (0) is flown at `default_altitude_m`.
+std::vector<RoutePoint> RouteOf(const Mission& mission, double default_altitude_m) {
   std::vector<RoutePoint> route;
   route.reserve(mission.waypoints.size());
   for (const radio::Waypoint& waypoint : mission.waypoints) {
     RoutePoint point;
     point.position = {waypoint.lat_deg, waypoint.lon_deg};
-    point.altitude_m = waypoint.altitude_m;
+    point.altitude_m = waypoint.altitude_m > 0.0 ? waypoint.altitude_m : default_altitude_m;
     point.speed_mps = waypoint.speed_mps;
     point.lane_start = (waypoint.flags & 1U) != 0;
     route.push_back(point);
@@ -70,7 +71,10 @@ void Vehicle::HoldHere(double altitude_m) {
 
 void Vehicle::EnterMode(FlightMode mode, Nanos now) {
   const Estimate& state = estimator_.estimate();
-  if (mode_ == FlightMode::kSearch && navigator_) resume_index_ = navigator_->waypoint_index();
+  // Leaving the search (for a hold, a loiter, a return): remember where to resume.
+  if (mode_ == FlightMode::kSearch && mode != FlightMode::kSearch && navigator_) {
+    resume_index_ = navigator_->waypoint_index();
+  }
   mode_ = mode;
   mode_since_ = now;
   switch (mode) {
@@ -82,7 +86,7 @@ void Vehicle::EnterMode(FlightMode mode, Nanos now) {
       HoldHere(Param(ParamId::kTakeoffAltitudeM));
       break;
     case FlightMode::kSearch:
-      StartRoute(RouteOf(*missions_.complete()), resume_index_);
+      StartRoute(RouteOf(*missions_.complete(), Param(ParamId::kTakeoffAltitudeM)), resume_index_);
       break;
     case FlightMode::kHold:
       HoldHere(state.altitude_m);

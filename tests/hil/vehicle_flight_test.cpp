@@ -85,6 +85,37 @@ TEST(VehicleFlight, HoldDuringTakeOffThenResumeFliesTheMission) {
   EXPECT_LT(mission.Truth(1).position_m.norm(), 8.0);
 }
 
+TEST(VehicleFlight, ANewMissionMidSearchFliesFromItsFirstWaypoint) {
+  Mission mission(OneVehicleWorld());
+  agents::Vehicle& vehicle = mission.AddVehicle(VehicleOne());
+  mission.RunUntil(1.0);
+  mission.link.UploadAndStart(1, 1,
+                              {WaypointAt(mission, Vec2(0.0, 0.0), kAltitudeM, true),
+                               WaypointAt(mission, Vec2(0.0, 2000.0), kAltitudeM)});
+  testing::RunUntilOr(mission, 120.0, [&] {
+    return vehicle.mode() == FlightMode::kSearch && vehicle.navigator()->waypoint_index() == 1;
+  });
+  mission.RunUntil(mission.simulation.time_s() + 10.0);
+  ASSERT_EQ(vehicle.navigator()->waypoint_index(), 1U);
+  // Mission 2: one waypoint without an altitude (0 = the take-off altitude).
+  mission.link.UploadAndStart(1, 2, {WaypointAt(mission, Vec2(300.0, 0.0), 0.0)});
+  testing::RunUntilOr(mission, 200.0, [&] { return vehicle.active_mission() == 2; });
+  ASSERT_EQ(vehicle.mode(), FlightMode::kSearch);
+  EXPECT_EQ(vehicle.navigator()->waypoint_index(), 0U);
+  double closest_m = 1e9;
+  double altitude_there_m = 0.0;
+  testing::RunUntilOr(mission, 400.0, [&] {
+    const double distance = (mission.Truth(1).position_m - Vec2(300.0, 0.0)).norm();
+    if (distance < closest_m) {
+      closest_m = distance;
+      altitude_there_m = mission.Truth(1).altitude_m;
+    }
+    return vehicle.mode() != FlightMode::kSearch;
+  });
+  EXPECT_LT(closest_m, 5.0);
+  EXPECT_NEAR(altitude_there_m, vehicle.params().Get(agents::ParamId::kTakeoffAltitudeM), 3.0);
+}
+
 // A 200 m square at 60 m, flown in `mode`; returns, per corner, the closest the
 // vehicle came to it (truth), and leaves the vehicle landed back home.
 std::vector<double> FlySquare(agents::NavigationMode mode, double* final_distance_home_m) {
