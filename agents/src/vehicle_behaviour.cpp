@@ -127,8 +127,11 @@ radio::CommandResult Vehicle::OnCommand(const radio::Command& command) {
   };
   switch (command.type) {
     case CommandType::kStartMission: {
-      // A mission flies only when every chunk of it is stored.
-      if (!missions_.IsComplete(command.mission_id) || !navigator_) return reject();
+      // A mission flies only when every chunk of it is stored, and not on a
+      // battery that already sent the vehicle home.
+      if (!missions_.IsComplete(command.mission_id) || !navigator_ || low_battery_) {
+        return reject();
+      }
       active_mission_ = command.mission_id;
       resume_index_ = 0;
       return accept(Airborne() ? FlightMode::kSearch : FlightMode::kTakeoff);
@@ -143,6 +146,7 @@ radio::CommandResult Vehicle::OnCommand(const radio::Command& command) {
       return accept(FlightMode::kHold);
     case CommandType::kResume: {
       if (mode_ != FlightMode::kHold && mode_ != FlightMode::kInvestigate) return reject();
+      if (low_battery_) return reject();
       const FlightMode back = mode_ == FlightMode::kHold ? mode_before_hold_ : FlightMode::kSearch;
       if (back == FlightMode::kSearch && missions_.complete() == nullptr) return reject();
       if (back == FlightMode::kInvestigate) return reject();  // its circle is gone: say where
@@ -155,7 +159,8 @@ radio::CommandResult Vehicle::OnCommand(const radio::Command& command) {
       if (!Airborne()) return reject();
       return accept(FlightMode::kLand);
     case CommandType::kInvestigate: {
-      if (!Airborne() || mode_ == FlightMode::kTakeoff || mode_ == FlightMode::kLand) {
+      if (!Airborne() || mode_ == FlightMode::kTakeoff || mode_ == FlightMode::kLand ||
+          low_battery_) {
         return reject();
       }
       if (!common::IsValidLatLon({command.lat_deg, command.lon_deg})) return reject();

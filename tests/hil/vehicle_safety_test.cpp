@@ -63,6 +63,18 @@ TEST(VehicleSafety, ReturnsAndLandsOnLowBattery) {
   EXPECT_EQ(vehicle.mode(), FlightMode::kReturnToLaunch);
   EXPECT_EQ(vehicle.stats().low_battery_returns, 1U);
   EXPECT_LT(mission.Truth(1).battery_fraction, threshold + 0.01);
+  // Nothing sends it away again on that battery: resume, investigate, a mission.
+  radio::Command command;
+  command.type = radio::CommandType::kInvestigate;
+  command.lat_deg = mission.ToLatLon(Vec2(0.0, 500.0)).lat_deg;
+  command.lon_deg = mission.ToLatLon(Vec2(0.0, 500.0)).lon_deg;
+  mission.link.server().SendCommand(1, command);
+  command.type = radio::CommandType::kStartMission;
+  command.mission_id = 5;
+  mission.link.server().SendCommand(1, command);
+  mission.RunUntil(mission.simulation.time_s() + 3.0);
+  EXPECT_EQ(vehicle.mode(), FlightMode::kReturnToLaunch);
+  EXPECT_EQ(vehicle.stats().commands_rejected, 2U);
   RunUntilOr(mission, 900.0, [&] { return vehicle.mode() == FlightMode::kLanded; });
   EXPECT_EQ(vehicle.mode(), FlightMode::kLanded);
   EXPECT_LT(mission.Truth(1).position_m.norm(), kHomeToleranceM);
