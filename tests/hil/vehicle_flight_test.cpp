@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <vector>
 
 #include "hil_test_helpers.hpp"
@@ -134,7 +135,12 @@ std::vector<double> FlySquare(agents::NavigationMode mode, double* final_distanc
     }
   });
   EXPECT_EQ(vehicle.mode(), FlightMode::kLanded);
-  EXPECT_EQ(mission.simulation.world().events().size() > 0, true);
+  // One take-off, one soft landing, no crash.
+  std::map<sim2d::EventKind, int> events;
+  for (const sim2d::WorldEvent& event : mission.simulation.world().events()) ++events[event.kind];
+  EXPECT_EQ(events[sim2d::EventKind::kTakeOff], 1);
+  EXPECT_EQ(events[sim2d::EventKind::kLanding], 1);
+  EXPECT_EQ(events[sim2d::EventKind::kCrash], 0);
   *final_distance_home_m = mission.Truth(1).position_m.norm();
   return closest;
 }
