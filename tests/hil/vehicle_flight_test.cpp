@@ -61,6 +61,40 @@ TEST(VehicleFlight, TakesOffAndHoldsAltitude) {
   EXPECT_EQ(vehicle.mode(), FlightMode::kHold);
 }
 
+TEST(VehicleFlight, TheAttitudeLoopTrimsOutABallast) {
+  // 5 mm of ballast forward drops the nose by 5 deg; the plant settles off its command and
+  // the stabilisation PID's I term must add the difference.
+  sim2d::SimulationConfig config = OneVehicleWorld();
+  sim2d::FaultSpec ballast;
+  ballast.kind = sim2d::FaultKind::kBallast;
+  ballast.ballast_offset_m = Vec2(0.005, 0.0);
+  config.world.vehicles[0].faults.push_back(ballast);
+  Mission mission(config);
+  agents::Vehicle& vehicle = mission.AddVehicle(VehicleOne());
+  mission.RunUntil(1.0);
+  mission.link.UploadAndStart(1, 7, {WaypointAt(mission, Vec2(0.0, 800.0), kAltitudeM)});
+  testing::RunUntilOr(mission, 60.0, [&] { return vehicle.mode() == FlightMode::kSearch; });
+  radio::Command hold;
+  hold.type = radio::CommandType::kHold;
+  mission.link.server().SendCommand(1, hold);
+  mission.RunUntil(mission.simulation.time_s() + 30.0);
+  ASSERT_EQ(vehicle.mode(), FlightMode::kHold);
+  double command_minus_setpoint = 0.0;
+  double truth_minus_setpoint = 0.0;
+  int steps = 0;
+  mission.RunUntil(mission.simulation.time_s() + 10.0, [&] {
+    command_minus_setpoint += vehicle.outputs().pitch_rad - vehicle.navigation_setpoint().pitch_rad;
+    truth_minus_setpoint += mission.Truth(1).pitch_rad - vehicle.navigation_setpoint().pitch_rad;
+    ++steps;
+  });
+  command_minus_setpoint /= steps;
+  truth_minus_setpoint /= steps;
+  std::printf("ballast 5 mm forward: command - set-point %.4f rad, attitude - set-point %.4f rad\n",
+              command_minus_setpoint, truth_minus_setpoint);
+  EXPECT_GT(command_minus_setpoint, 0.01);           // nose-up trim learnt
+  EXPECT_LT(std::abs(truth_minus_setpoint), 0.005);  // the attitude is where it was asked
+}
+
 TEST(VehicleFlight, HoldDuringTakeOffThenResumeFliesTheMission) {
   Mission mission(OneVehicleWorld());
   agents::Vehicle& vehicle = mission.AddVehicle(VehicleOne());
