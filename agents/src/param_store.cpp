@@ -1,7 +1,4 @@
 // ParamStore: the values, their checks, and their JSON file (seed 3.3's EEPROM).
-#include <fcntl.h>
-#include <unistd.h>
-
 #include <array>
 #include <cerrno>
 #include <charconv>
@@ -17,6 +14,7 @@
 #include <utility>
 
 #include "fireswarm/agents/params.hpp"
+#include "fireswarm/common/atomic_file.hpp"
 
 namespace fireswarm::agents {
 namespace {
@@ -72,46 +70,6 @@ std::string ReadText(const std::filesystem::path& file) {
   text << in.rdbuf();
   if (in.bad()) ThrowCorrupt(file, "", "cannot read");
   return text.str();
-}
-
-// Writes `text` to `path` so that a crash leaves either the old or the new file:
-// a sibling temporary, flushed to disk, renamed over `path`, then the directory
-// flushed so the rename itself survives a power cut. Returns the error, if any.
-std::optional<std::string> WriteDurably(const std::filesystem::path& path, std::string_view text) {
-  std::filesystem::path temporary = path;
-  temporary += ".tmp";
-  const auto fail = [&](const std::string& step) {
-    std::string message = path.string() + ": " + step + ": " + std::strerror(errno);
-    ::unlink(temporary.c_str());
-    return message;
-  };
-  const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0) return fail("cannot create " + temporary.string());
-  std::size_t written = 0;
-  while (written < text.size()) {
-    const ssize_t n = ::write(fd, text.data() + written, text.size() - written);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) {
-      ::close(fd);
-      return fail("cannot write " + temporary.string());
-    }
-    written += static_cast<std::size_t>(n);
-  }
-  if (::fsync(fd) != 0) {
-    ::close(fd);
-    return fail("cannot flush " + temporary.string());
-  }
-  if (::close(fd) != 0) return fail("cannot close " + temporary.string());
-  if (std::rename(temporary.c_str(), path.c_str()) != 0) return fail("cannot rename into place");
-  // The data is safe; a directory that cannot be flushed only risks the rename.
-  const std::filesystem::path directory =
-      path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
-  const int dir_fd = ::open(directory.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-  if (dir_fd >= 0) {
-    ::fsync(dir_fd);
-    ::close(dir_fd);
-  }
-  return std::nullopt;
 }
 
 // Checks everything but the values; returns the vehicle the file was written for.
@@ -242,10 +200,10 @@ void ParamStore::Persist() {
     root["version"] = kVersion;
     root["vehicle"] = vehicle_;
     root["params"] = std::move(params);
-    if (const auto failure = WriteDurably(file_, root.dump(kJsonIndent) + "\n")) {
-      ++persist_errors_;
-      last_persist_error_ = *failure;
-    }
+    common::WriteFileAtomically(file_, root.dump(kJsonIndent) + "\n");
+  } catch (const std::runtime_error& e) {
+    ++persist_errors_;
+    last_persist_error_ = e.what();  // names the file and the step that failed
   } catch (const std::exception& e) {
     ++persist_errors_;
     last_persist_error_ = file_.string() + ": " + e.what();

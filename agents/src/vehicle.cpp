@@ -62,7 +62,6 @@ Vehicle::Vehicle(const VehicleConfig& config)
     : config_((config.Validate(), config)),
       params_(MakeParamStore(config)),
       endpoint_(EndpointConfig(config), *this),
-      navigator_(),
       detector_(config.detector.value_or(FireDetectorConfigFor(config.camera))) {
   ApplyParams();
 }

@@ -1,12 +1,11 @@
-// The GeoJSON export and the atomic file writers shared by every export.
-#include <unistd.h>
+// The GeoJSON export and the file writer every export goes through.
 
 #include <cstdio>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
 
+#include "fireswarm/common/atomic_file.hpp"
 #include "fireswarm/planner/export.hpp"
 
 namespace fireswarm::planner {
@@ -82,32 +81,9 @@ std::string PlanToGeoJson(const Plan& plan, const SearchArea& area, const FleetS
   return collection.dump(1) + "\n";
 }
 
-void WriteFileAtomically(const std::filesystem::path& path, std::string_view text) {
-  // A unique sibling name: same directory (so rename is atomic), per process.
-  std::filesystem::path temporary = path;
-  temporary += ".partial." + std::to_string(getpid());
-  {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    out.write(text.data(), static_cast<std::streamsize>(text.size()));
-    out.close();
-    if (!out) {
-      std::error_code ignored;
-      std::filesystem::remove(temporary, ignored);
-      throw std::runtime_error(path.string() + ": cannot write the file");
-    }
-  }
-  std::error_code error;
-  std::filesystem::rename(temporary, path, error);
-  if (error) {
-    std::error_code ignored;
-    std::filesystem::remove(temporary, ignored);
-    throw std::runtime_error(path.string() + ": cannot write the file (rename failed)");
-  }
-}
-
 void WritePlanGeoJson(const std::filesystem::path& path, const Plan& plan, const SearchArea& area,
                       const FleetSpec& fleet) {
-  WriteFileAtomically(path, PlanToGeoJson(plan, area, fleet));
+  common::WriteFileAtomically(path, PlanToGeoJson(plan, area, fleet));
 }
 
 }  // namespace fireswarm::planner

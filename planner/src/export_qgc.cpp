@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "fireswarm/common/atomic_file.hpp"
 #include "fireswarm/planner/export.hpp"
 
 namespace fireswarm::planner {
@@ -129,7 +130,7 @@ std::vector<std::filesystem::path> WriteQgcPlans(const std::filesystem::path& di
   std::vector<std::filesystem::path> written;
   for (const QgcPlanFile& file : files) {
     written.push_back(directory / file.file_name);
-    WriteFileAtomically(written.back(), file.json);
+    common::WriteFileAtomically(written.back(), file.json);
   }
   return written;
 }

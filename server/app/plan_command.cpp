@@ -14,6 +14,7 @@
 
 #include "cli.hpp"
 #include "commands.hpp"
+#include "fireswarm/common/atomic_file.hpp"
 #include "fireswarm/common/camera_model.hpp"
 #include "fireswarm/planner/area_io.hpp"
 #include "fireswarm/planner/export.hpp"
@@ -292,10 +293,10 @@ int RunPlan(const std::vector<std::string>& args) {
     fs::create_directories(f.qgc);
     for (const planner::QgcPlanFile& file : qgc) {
       qgc_files.push_back(fs::path(f.qgc) / file.file_name);
-      planner::WriteFileAtomically(qgc_files.back(), file.json);
+      common::WriteFileAtomically(qgc_files.back(), file.json);
     }
   }
-  planner::WriteFileAtomically(f.out, geojson);
+  common::WriteFileAtomically(f.out, geojson);
 
   if (f.json) {
     std::cout << ToJson(f, plan, qgc_files).dump() << "\n";

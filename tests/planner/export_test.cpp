@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "fireswarm/common/atomic_file.hpp"
 #include "fireswarm/planner/area_io.hpp"
 
 namespace fireswarm::planner {
@@ -210,7 +211,7 @@ TEST(WriteExports, WritesWholeFilesAndNoTemporaries) {
   EXPECT_EQ(Json::parse(in)["type"], "FeatureCollection");
   std::filesystem::remove_all(dir);
   std::filesystem::remove(dir.string() + "_plan.geojson");
-  EXPECT_THROW(WriteFileAtomically("/nonexistent-dir/x.geojson", "{}"), std::runtime_error);
+  EXPECT_THROW(common::WriteFileAtomically("/nonexistent-dir/x.geojson", "{}"), std::runtime_error);
 }
 
 }  // namespace

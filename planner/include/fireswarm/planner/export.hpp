@@ -36,11 +36,6 @@ struct QgcPlanFile {
 std::vector<QgcPlanFile> PlanToQgc(const Plan& plan, const SearchArea& area,
                                    const FleetSpec& fleet);
 
-/// Writes `text` to `path` through a temporary file in the same directory and a
-/// rename, so readers never see half a file. Throws std::runtime_error naming the
-/// path when it cannot write.
-void WriteFileAtomically(const std::filesystem::path& path, std::string_view text);
-
 /// PlanToGeoJson written atomically to `path`.
 void WritePlanGeoJson(const std::filesystem::path& path, const Plan& plan, const SearchArea& area,
                       const FleetSpec& fleet);

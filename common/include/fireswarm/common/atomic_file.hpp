@@ -1,0 +1,18 @@
+// Writing a file so that a crash or a concurrent reader never sees half of it.
+// The one way fireswarm writes its output and state files (plans, QGC files,
+// vehicle parameters).
+#pragma once
+
+#include <filesystem>
+#include <string_view>
+
+namespace fireswarm::common {
+
+/// Writes `text` to `path` through a temporary sibling (same directory, named per
+/// process), flushed to disk, renamed over `path`; then the directory is flushed
+/// so the rename itself survives a power cut. A failure leaves the old file, if
+/// any, and no temporary. Throws std::runtime_error naming the path and the step
+/// that failed.
+void WriteFileAtomically(const std::filesystem::path& path, std::string_view text);
+
+}  // namespace fireswarm::common
