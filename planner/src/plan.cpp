@@ -245,7 +245,7 @@ Plan PlanSearch(const SearchArea& area, const FleetSpec& fleet, PlannerKind kind
     for (const FlightPoint& p : flight.points) {
       path.push_back(p.point);
       const common::LatLon geodetic = area.frame.ToGeodetic({p.point.x(), p.point.y()});
-      drone.waypoints.push_back({p.point, geodetic, p.is_return});
+      drone.waypoints.push_back({p.point, geodetic, p.is_return, p.starts_lane});
     }
     drone.sorties = flight.sorties;
     drone.length_m = flight.length_m;

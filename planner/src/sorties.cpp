@@ -26,13 +26,13 @@ std::string Where(Point p) {
 class FlightBuilder {
  public:
   FlightBuilder(Point launch, double speed_mps) : speed_mps_(speed_mps) {
-    flight_.points.push_back({launch, false});
+    flight_.points.push_back({launch, false, false});
   }
 
   // Transit from the current point to `to`; the last point may be a return.
   void Transit(const Path& path, bool is_return) {
     for (std::size_t i = 1; i < path.size(); ++i) {
-      flight_.points.push_back({path[i], is_return && i + 1 == path.size()});
+      flight_.points.push_back({path[i], is_return && i + 1 == path.size(), false});
     }
     const double length_m = LengthM(path);
     flight_.length_m += length_m;
@@ -46,7 +46,7 @@ class FlightBuilder {
     flight_.time_s += t1_s - t0_s;
     if (route.points.size() < 2) {
       flight_.transit_s += t1_s - t0_s;
-      flight_.points.push_back({to, false});
+      flight_.points.push_back({to, false, false});
       return;
     }
     const std::size_t i = route.SegmentAt((t0_s + t1_s) / 2.0);
@@ -54,8 +54,10 @@ class FlightBuilder {
     const double turn_s =
         std::max(0.0, std::min(t1_s, turn_end_s) - std::max(t0_s, route.time_s[i]));
     flight_.turn_s += turn_s;
-    (route.segment_lane[i] >= 0 ? flight_.sweep_s : flight_.transit_s) += t1_s - t0_s - turn_s;
-    flight_.points.push_back({to, false});
+    const bool on_lane = route.segment_lane[i] >= 0;
+    (on_lane ? flight_.sweep_s : flight_.transit_s) += t1_s - t0_s - turn_s;
+    if (on_lane) flight_.points.back().starts_lane = true;
+    flight_.points.push_back({to, false, false});
   }
 
   Flight Take() { return std::move(flight_); }
@@ -69,7 +71,7 @@ class FlightBuilder {
 
 Flight FlyShare(const Route& route, const Share& share, Point launch, double endurance_s,
                 const TransitPlanner& transit) {
-  if (share.end_s <= share.begin_s) return Flight{{{launch, false}}, 0, 0.0, 0.0};
+  if (share.end_s <= share.begin_s) return Flight{{{launch, false, false}}, 0, 0.0, 0.0};
   // The share's vertices and their route times.
   std::vector<Point> points{route.At(share.begin_s)};
   std::vector<double> times{share.begin_s};

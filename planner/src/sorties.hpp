@@ -14,6 +14,7 @@ namespace fireswarm::planner {
 struct FlightPoint {
   Point point;
   bool is_return = false;  ///< a return to launch between two sorties
+  bool starts_lane = false;  ///< the leg that begins here flies a search lane
 };
 
 struct Flight {

@@ -55,6 +55,27 @@ TEST(PlanSearch, HoledAreaMeetsTheTargets) {
   EXPECT_LE(plan.makespan_s / plan.lower_bound_s, 1.15);
 }
 
+// The server uploads lane starts to the vehicles (they hold the cross-track error on
+// lanes only): the legs flagged starts_lane are the lanes, whose flying time is the
+// plan's sweep time.
+TEST(PlanSearch, LaneStartFlagsMarkTheSweptLegs) {
+  const FleetSpec fleet = Fleet(3, {1'000, 1'000});
+  const Plan plan = PlanSearch(Area({Rect(0, 0, 3'000, 2'000)}), fleet);
+  for (const DronePlan& drone : plan.drones) {
+    double lane_m = 0.0;
+    int lanes = 0;
+    for (std::size_t i = 0; i + 1 < drone.waypoints.size(); ++i) {
+      if (!drone.waypoints[i].starts_lane) continue;
+      lane_m += bg::distance(drone.waypoints[i].local, drone.waypoints[i + 1].local);
+      ++lanes;
+    }
+    EXPECT_GT(lanes, 2) << "drone " << drone.receiver_id;
+    EXPECT_FALSE(drone.waypoints.front().starts_lane) << "the transit out is not a lane";
+    EXPECT_NEAR(lane_m / fleet.speed_mps, drone.sweep_s, 1e-6 * drone.sweep_s)
+        << "drone " << drone.receiver_id;
+  }
+}
+
 // Planning time (< 2 s for 100 km^2 and 20 drones) is a benchmark figure: plan_bench.
 TEST(PlanSearch, HundredSquareKilometresTwentyDronesAreCovered) {
   const Plan plan = PlanSearch(Area({Rect(0, 0, 10'000, 10'000)}), Fleet(20, {5'000, 5'000}));

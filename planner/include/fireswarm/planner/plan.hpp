@@ -40,6 +40,7 @@ struct Waypoint {
   Point local;
   common::LatLon geodetic;
   bool is_return = false;  ///< a return-to-launch point between sorties
+  bool starts_lane = false;  ///< the leg from here to the next waypoint is a search lane
 };
 
 /// One drone's plan: its region, the path (launch -> coverage -> home, split into
