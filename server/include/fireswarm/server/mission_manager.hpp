@@ -1,0 +1,117 @@
+// The mission manager: takes the planner's per-drone plans to the vehicles and
+// follows them. Each drone's waypoints go up in chunks through the master
+// scheduler (with its acks and retries), then the drone is told to start; a start
+// the vehicle refuses (no GPS fix yet, battery low) is asked again every few
+// seconds; telemetry then says how far along its lanes each drone is.
+//
+// A pure core: it queues requests on the scheduler it is given and reacts to the
+// scheduler's events. No clock: times come with the events and with Step().
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "fireswarm/planner/plan.hpp"
+#include "fireswarm/radio/master_scheduler.hpp"
+#include "fireswarm/radio/messages.hpp"
+
+namespace fireswarm::server {
+
+/// One drone's part of a mission as it goes over the radio.
+struct DroneMission {
+  std::uint8_t vehicle = 0;  ///< receiver ID, 1..254
+  std::uint16_t mission_id = 0;
+  std::vector<radio::Waypoint> waypoints;
+};
+
+/// The plan's drones as radio missions, all with `mission_id`: every waypoint at
+/// `altitude_m` above ground and `speed_mps`, lane starts flagged (bit 0), the
+/// launch point at either end included. Throws std::invalid_argument when a
+/// receiver ID is outside 1..254 or a drone has more waypoints than a mission can
+/// hold (255 chunks).
+std::vector<DroneMission> ToDroneMissions(const planner::Plan& plan, std::uint16_t mission_id,
+                                          double altitude_m, double speed_mps);
+
+/// Where one drone is in the mission.
+enum class DronePhase : std::uint8_t {
+  kUploading,  ///< chunks queued, not all acknowledged
+  kStarting,   ///< mission stored on the vehicle, start asked (again after a refusal)
+  kFlying,     ///< the vehicle accepted the start
+  kDone,       ///< landed after flying the mission
+  kFailed,     ///< upload rejected or unanswered after every retry; `failure` says why
+};
+
+const char* ToString(DronePhase phase);
+
+struct DroneProgress {
+  DronePhase phase = DronePhase::kUploading;
+  std::size_t chunk_count = 0;
+  std::size_t chunks_acked = 0;
+  std::size_t waypoint_count = 0;
+  std::uint16_t waypoint_index = 0;  ///< from telemetry: the waypoint being flown to
+  int start_refusals = 0;            ///< starts the vehicle refused so far
+  std::string failure;               ///< why the drone failed (kFailed only)
+};
+
+struct MissionManagerConfig {
+  /// A refused start is asked again after this long, seconds.
+  double start_retry_s = 2.0;
+  /// Rounds of resending a chunk whose request failed (each round is itself the
+  /// scheduler's max_retries resends) before the drone is given up.
+  int chunk_rounds = 3;
+};
+
+class MissionManager {
+ public:
+  /// `scheduler` must outlive the manager and know every drone's vehicle.
+  /// Throws std::invalid_argument for a vehicle listed twice.
+  MissionManager(radio::MasterScheduler& scheduler, std::vector<DroneMission> missions,
+                 const MissionManagerConfig& config = {});
+
+  /// Queues every drone's chunks; each drone's start follows its last chunk's ack.
+  void Begin();
+
+  /// Feeds one scheduler event (every event may be fed; others are ignored).
+  void OnEvent(const radio::SchedulerEvent& event);
+
+  /// Asks refused starts again once start_retry_s has passed. Call at least as
+  /// often as NextWakeup() says.
+  void Step(radio::Nanos now);
+  /// When Step() must next be called; Nanos::max() when nothing waits.
+  radio::Nanos NextWakeup() const;
+
+  const DroneProgress& progress(std::uint8_t vehicle) const;
+  std::vector<std::uint8_t> vehicles() const;  ///< ascending
+  /// True when every drone is flying, done or failed (none still uploading/starting).
+  bool AllStarted() const;
+  /// Fraction of all drones' waypoints passed, [0, 1] (done drones count whole).
+  double WaypointFraction() const;
+
+ private:
+  struct Drone {
+    DroneMission mission;
+    std::vector<radio::MissionChunk> chunks;
+    std::vector<int> chunk_rounds;  // per chunk: sends so far
+    DroneProgress progress;
+    radio::Nanos retry_start_at = radio::Nanos::max();
+  };
+  void SendChunk(Drone& drone, std::size_t index);
+  void SendStart(Drone& drone);
+  void OnFinished(const radio::RequestFinished& finished);
+  void OnTelemetry(const radio::TelemetryReceived& telemetry);
+  void Fail(Drone& drone, std::string why);
+
+  radio::MasterScheduler& scheduler_;
+  MissionManagerConfig config_;
+  std::map<std::uint8_t, Drone> drones_;
+  struct Pending {
+    std::uint8_t vehicle = 0;
+    int chunk = -1;  // -1: the start command
+  };
+  std::map<radio::RequestId, Pending> pending_;
+};
+
+}  // namespace fireswarm::server

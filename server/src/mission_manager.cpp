@@ -1,0 +1,226 @@
+#include "fireswarm/server/mission_manager.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+#include <utility>
+#include <variant>
+
+#include "fireswarm/radio/mission_chunks.hpp"
+
+namespace fireswarm::server {
+
+namespace {
+
+constexpr std::uint8_t kLaneStartFlag = 1U << 0;  // radio::Waypoint::flags bit 0
+
+}  // namespace
+
+std::vector<DroneMission> ToDroneMissions(const planner::Plan& plan, std::uint16_t mission_id,
+                                          double altitude_m, double speed_mps) {
+  std::vector<DroneMission> missions;
+  for (const planner::DronePlan& drone : plan.drones) {
+    if (drone.receiver_id < 1 || drone.receiver_id > 254) {
+      throw std::invalid_argument("receiver ID " + std::to_string(drone.receiver_id) +
+                                  " is outside 1..254");
+    }
+    if (drone.waypoints.size() > radio::kMaxMissionWaypoints) {
+      throw std::invalid_argument("drone " + std::to_string(drone.receiver_id) + " has " +
+                                  std::to_string(drone.waypoints.size()) +
+                                  " waypoints; a mission holds at most " +
+                                  std::to_string(radio::kMaxMissionWaypoints));
+    }
+    DroneMission mission;
+    mission.vehicle = static_cast<std::uint8_t>(drone.receiver_id);
+    mission.mission_id = mission_id;
+    for (const planner::Waypoint& point : drone.waypoints) {
+      radio::Waypoint waypoint;
+      waypoint.lat_deg = point.geodetic.lat_deg;
+      waypoint.lon_deg = point.geodetic.lon_deg;
+      waypoint.altitude_m = altitude_m;
+      waypoint.speed_mps = speed_mps;
+      waypoint.flags = point.starts_lane ? kLaneStartFlag : std::uint8_t{0};
+      mission.waypoints.push_back(waypoint);
+    }
+    missions.push_back(std::move(mission));
+  }
+  return missions;
+}
+
+const char* ToString(DronePhase phase) {
+  switch (phase) {
+    case DronePhase::kUploading:
+      return "uploading";
+    case DronePhase::kStarting:
+      return "starting";
+    case DronePhase::kFlying:
+      return "flying";
+    case DronePhase::kDone:
+      return "done";
+    case DronePhase::kFailed:
+      return "failed";
+  }
+  return "unknown";
+}
+
+MissionManager::MissionManager(radio::MasterScheduler& scheduler,
+                               std::vector<DroneMission> missions,
+                               const MissionManagerConfig& config)
+    : scheduler_(scheduler), config_(config) {
+  for (DroneMission& mission : missions) {
+    const std::uint8_t vehicle = mission.vehicle;
+    if (drones_.contains(vehicle)) {
+      throw std::invalid_argument("vehicle " + std::to_string(vehicle) +
+                                  " has two missions in one plan");
+    }
+    Drone drone;
+    drone.chunks = radio::SplitMission(mission.mission_id, mission.waypoints);
+    drone.chunk_rounds.assign(drone.chunks.size(), 0);
+    drone.progress.chunk_count = drone.chunks.size();
+    drone.progress.waypoint_count = mission.waypoints.size();
+    drone.mission = std::move(mission);
+    drones_.emplace(vehicle, std::move(drone));
+  }
+}
+
+void MissionManager::Begin() {
+  for (auto& [vehicle, drone] : drones_) {
+    for (std::size_t i = 0; i < drone.chunks.size(); ++i) SendChunk(drone, i);
+  }
+}
+
+void MissionManager::SendChunk(Drone& drone, std::size_t index) {
+  ++drone.chunk_rounds[index];
+  const radio::RequestId id = scheduler_.SendMissionChunk(drone.mission.vehicle, drone.chunks[index]);
+  pending_[id] = Pending{drone.mission.vehicle, static_cast<int>(index)};
+}
+
+void MissionManager::SendStart(Drone& drone) {
+  radio::Command start;
+  start.type = radio::CommandType::kStartMission;
+  start.mission_id = drone.mission.mission_id;
+  drone.progress.phase = DronePhase::kStarting;
+  drone.retry_start_at = radio::Nanos::max();
+  pending_[scheduler_.SendCommand(drone.mission.vehicle, start)] =
+      Pending{drone.mission.vehicle, -1};
+}
+
+void MissionManager::Fail(Drone& drone, std::string why) {
+  drone.progress.phase = DronePhase::kFailed;
+  drone.progress.failure = std::move(why);
+  drone.retry_start_at = radio::Nanos::max();
+}
+
+void MissionManager::OnEvent(const radio::SchedulerEvent& event) {
+  if (const auto* finished = std::get_if<radio::RequestFinished>(&event)) {
+    OnFinished(*finished);
+  } else if (const auto* telemetry = std::get_if<radio::TelemetryReceived>(&event)) {
+    OnTelemetry(*telemetry);
+  }
+}
+
+void MissionManager::OnFinished(const radio::RequestFinished& finished) {
+  const auto found = pending_.find(finished.id);
+  if (found == pending_.end()) return;  // someone else's request
+  const Pending pending = found->second;
+  pending_.erase(found);
+  Drone& drone = drones_.at(pending.vehicle);
+  if (drone.progress.phase == DronePhase::kFailed) return;
+
+  if (pending.chunk >= 0) {
+    const auto index = static_cast<std::size_t>(pending.chunk);
+    if (finished.status == radio::RequestStatus::kFailed) {
+      if (drone.chunk_rounds[index] >= config_.chunk_rounds) {
+        Fail(drone, "chunk " + std::to_string(index) + " unanswered after " +
+                        std::to_string(drone.chunk_rounds[index]) + " rounds of retries");
+      } else {
+        SendChunk(drone, index);
+      }
+      return;
+    }
+    const auto* ack = finished.ack ? std::get_if<radio::MissionAck>(&*finished.ack) : nullptr;
+    if (ack == nullptr || ack->status == radio::MissionAckStatus::kRejected) {
+      Fail(drone, "the vehicle rejected chunk " + std::to_string(index));
+      return;
+    }
+    ++drone.progress.chunks_acked;
+    if (ack->status == radio::MissionAckStatus::kComplete &&
+        drone.progress.phase == DronePhase::kUploading) {
+      SendStart(drone);
+    }
+    return;
+  }
+
+  // The start command.
+  if (finished.status == radio::RequestStatus::kFailed) {
+    drone.retry_start_at = finished.finished;  // unanswered: ask again at once
+    return;
+  }
+  const auto* ack = finished.ack ? std::get_if<radio::CommandAck>(&*finished.ack) : nullptr;
+  if (ack != nullptr && ack->result == radio::CommandResult::kAccepted) {
+    drone.progress.phase = DronePhase::kFlying;
+    return;
+  }
+  ++drone.progress.start_refusals;
+  drone.retry_start_at = finished.finished + radio::FromSeconds(config_.start_retry_s);
+}
+
+void MissionManager::OnTelemetry(const radio::TelemetryReceived& received) {
+  const auto found = drones_.find(received.vehicle);
+  if (found == drones_.end()) return;
+  Drone& drone = found->second;
+  const radio::Telemetry& telemetry = received.telemetry;
+  if (telemetry.mission_id != drone.mission.mission_id) return;
+  if (drone.progress.phase != DronePhase::kFlying) return;
+  drone.progress.waypoint_index = std::max(drone.progress.waypoint_index, telemetry.waypoint_index);
+  if (telemetry.mode == radio::FlightMode::kLanded) drone.progress.phase = DronePhase::kDone;
+}
+
+void MissionManager::Step(radio::Nanos now) {
+  for (auto& [vehicle, drone] : drones_) {
+    if (drone.progress.phase == DronePhase::kStarting && drone.retry_start_at <= now) {
+      SendStart(drone);
+    }
+  }
+}
+
+radio::Nanos MissionManager::NextWakeup() const {
+  radio::Nanos next = radio::Nanos::max();
+  for (const auto& [vehicle, drone] : drones_) next = std::min(next, drone.retry_start_at);
+  return next;
+}
+
+const DroneProgress& MissionManager::progress(std::uint8_t vehicle) const {
+  const auto found = drones_.find(vehicle);
+  if (found == drones_.end()) {
+    throw std::out_of_range("vehicle " + std::to_string(vehicle) + " has no mission");
+  }
+  return found->second.progress;
+}
+
+std::vector<std::uint8_t> MissionManager::vehicles() const {
+  std::vector<std::uint8_t> ids;
+  for (const auto& [vehicle, drone] : drones_) ids.push_back(vehicle);
+  return ids;
+}
+
+bool MissionManager::AllStarted() const {
+  return std::ranges::none_of(drones_, [](const auto& entry) {
+    const DronePhase phase = entry.second.progress.phase;
+    return phase == DronePhase::kUploading || phase == DronePhase::kStarting;
+  });
+}
+
+double MissionManager::WaypointFraction() const {
+  std::size_t total = 0;
+  std::size_t passed = 0;
+  for (const auto& [vehicle, drone] : drones_) {
+    const DroneProgress& progress = drone.progress;
+    total += progress.waypoint_count;
+    passed += progress.phase == DronePhase::kDone
+                  ? progress.waypoint_count
+                  : std::min<std::size_t>(progress.waypoint_index, progress.waypoint_count);
+  }
+  return total == 0 ? 0.0 : static_cast<double>(passed) / static_cast<double>(total);
+}
+
+}  // namespace fireswarm::server
