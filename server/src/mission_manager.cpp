@@ -84,13 +84,15 @@ MissionManager::MissionManager(radio::MasterScheduler& scheduler,
 
 void MissionManager::Begin() {
   for (auto& [vehicle, drone] : drones_) {
+    if (drone.progress.phase != DronePhase::kUploading) continue;
     for (std::size_t i = 0; i < drone.chunks.size(); ++i) SendChunk(drone, i);
   }
 }
 
 void MissionManager::SendChunk(Drone& drone, std::size_t index) {
   ++drone.chunk_rounds[index];
-  const radio::RequestId id = scheduler_.SendMissionChunk(drone.mission.vehicle, drone.chunks[index]);
+  const radio::RequestId id =
+      scheduler_.SendMissionChunk(drone.mission.vehicle, drone.chunks[index]);
   pending_[id] = Pending{drone.mission.vehicle, static_cast<int>(index)};
 }
 
@@ -187,6 +189,17 @@ radio::Nanos MissionManager::NextWakeup() const {
   radio::Nanos next = radio::Nanos::max();
   for (const auto& [vehicle, drone] : drones_) next = std::min(next, drone.retry_start_at);
   return next;
+}
+
+void MissionManager::RestorePhase(std::uint8_t vehicle, DronePhase phase) {
+  const auto found = drones_.find(vehicle);
+  if (found == drones_.end()) {
+    throw std::out_of_range("vehicle " + std::to_string(vehicle) + " has no mission");
+  }
+  Drone& drone = found->second;
+  drone.progress.phase = phase;
+  if (phase != DronePhase::kUploading) drone.progress.chunks_acked = drone.chunks.size();
+  drone.retry_start_at = phase == DronePhase::kStarting ? radio::Nanos{0} : radio::Nanos::max();
 }
 
 const DroneProgress& MissionManager::progress(std::uint8_t vehicle) const {

@@ -71,7 +71,8 @@ class MissionManager {
   MissionManager(radio::MasterScheduler& scheduler, std::vector<DroneMission> missions,
                  const MissionManagerConfig& config = {});
 
-  /// Queues every drone's chunks; each drone's start follows its last chunk's ack.
+  /// Queues every uploading drone's chunks; each drone's start follows its last
+  /// chunk's ack.
   void Begin();
 
   /// Feeds one scheduler event (every event may be fed; others are ignored).
@@ -82,6 +83,12 @@ class MissionManager {
   void Step(radio::Nanos now);
   /// When Step() must next be called; Nanos::max() when nothing waits.
   radio::Nanos NextWakeup() const;
+
+  /// Puts a drone back in `phase` without sending anything (a restarted server
+  /// whose journal says where the drone was): kFlying and later drones are not
+  /// uploaded again; kStarting asks its start at the next Step. Throws
+  /// std::out_of_range for a vehicle without a mission.
+  void RestorePhase(std::uint8_t vehicle, DronePhase phase);
 
   const DroneProgress& progress(std::uint8_t vehicle) const;
   std::vector<std::uint8_t> vehicles() const;  ///< ascending

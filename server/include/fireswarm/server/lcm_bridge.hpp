@@ -1,0 +1,131 @@
+// The LCM side of the server: what it publishes (vehicle_state_t, fire tracks,
+// mission_status_t, radio_stats_t, each at its own rate), what it accepts
+// (operator_command_t), the LCM log it writes for the stock `lcm-logplayer`, and
+// the per-message CSV files (the seed's ground station logged its telemetry to CSV
+// at fixed rates, 3.6).
+//
+// Times: LCM `utime` fields are microseconds of the clock the caller passes:
+// `fireswarm serve` passes the Unix-epoch wall clock; `fireswarm run` passes
+// simulated time from the scenario's start (so a run's log is reproducible).
+//
+// The conversions are pure (lcm_messages.cpp); LcmBridge is the adapter that owns
+// the lcm::LCM instance and the files (lcm_bridge.cpp).
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "fireswarm/fire_track_list_t.hpp"
+#include "fireswarm/mission_status_t.hpp"
+#include "fireswarm/operator_command_t.hpp"
+#include "fireswarm/radio_stats_t.hpp"
+#include "fireswarm/server/server.hpp"
+#include "fireswarm/vehicle_state_t.hpp"
+
+namespace lcm {
+class LCM;
+class LogFile;
+struct ReceiveBuffer;
+}  // namespace lcm
+
+namespace fireswarm::server {
+
+/// Channel names.
+inline constexpr const char* kVehicleStateChannel = "FIRESWARM_VEHICLE_STATE";
+inline constexpr const char* kFireTracksChannel = "FIRESWARM_FIRE_TRACKS";
+inline constexpr const char* kMissionStatusChannel = "FIRESWARM_MISSION_STATUS";
+inline constexpr const char* kRadioStatsChannel = "FIRESWARM_RADIO_STATS";
+inline constexpr const char* kOperatorCommandChannel = "FIRESWARM_OPERATOR_COMMAND";
+
+/// Publication rates, Hz (0 = not published).
+struct LcmRates {
+  double vehicle_state_hz = 2.0;  ///< every vehicle, each period
+  double fire_tracks_hz = 1.0;
+  double mission_status_hz = 1.0;
+  double radio_stats_hz = 0.5;
+  /// Throws std::invalid_argument naming the rate that is negative or not finite.
+  void Validate() const;
+};
+
+// ---- Pure conversions (lcm_messages.cpp) -------------------------------------
+
+/// One registered vehicle at `now_s` (mission seconds), stamped `utime`.
+vehicle_state_t ToVehicleState(const Server& server, std::uint8_t vehicle, double now_s,
+                               std::int64_t utime);
+/// Every track, ascending by ID, positions in WGS84 through the server's frame;
+/// track times converted with utime = `utime_at_zero` + seconds * 1e6.
+fire_track_list_t ToFireTrackList(const Server& server, std::int64_t utime,
+                                  std::int64_t utime_at_zero);
+mission_status_t ToMissionStatus(const Server& server, double now_s, std::int64_t utime);
+/// The counters a radio_stats_t window is the difference of.
+struct RadioCounters {
+  radio::SchedulerStats stats;
+  std::uint64_t bytes_sent = 0;
+  std::uint64_t bytes_received = 0;
+};
+/// Counters since the start; busy fraction (airtime of the bytes the server sent
+/// and received: a lower bound, turnarounds not counted) and payload rate over the
+/// last `window_s`, from the difference with `previous`, which is then updated.
+radio_stats_t ToRadioStats(const Server& server, double now_s, std::int64_t utime, double window_s,
+                           RadioCounters& previous);
+/// An operator's command as the server takes it; nullopt (with the reason in
+/// `why`) when the command constant is unknown or a field is out of range.
+std::optional<OperatorCommand> FromLcm(const operator_command_t& message, std::string* why);
+
+// ---- The adapter (lcm_bridge.cpp) --------------------------------------------
+
+struct LcmBridgeConfig {
+  /// LCM provider URL ("udpm://239.255.76.67:7667?ttl=0", "memq://"); empty: no
+  /// network, only the log and CSV files.
+  std::string url;
+  LcmRates rates;
+  std::optional<std::filesystem::path> log_path;  ///< LCM event log to write
+  std::optional<std::filesystem::path> csv_dir;   ///< one CSV per message type
+};
+
+class LcmBridge {
+ public:
+  /// Throws std::runtime_error naming the URL or file when LCM cannot start or a
+  /// file cannot be created; std::invalid_argument for a bad rate.
+  explicit LcmBridge(const LcmBridgeConfig& config);
+  ~LcmBridge();
+  LcmBridge(const LcmBridge&) = delete;
+  LcmBridge& operator=(const LcmBridge&) = delete;
+
+  /// Publishes (and logs, and writes to CSV) every message type whose period has
+  /// come round at `now_s` (mission seconds); `utime` stamps them.
+  void Publish(const Server& server, double now_s, std::int64_t utime, std::int64_t utime_at_zero);
+  /// Operator commands received since the last call (handles pending LCM
+  /// traffic without blocking). Malformed ones are dropped and counted.
+  std::vector<OperatorCommand> TakeCommands();
+  /// When Publish next has something to publish, mission seconds.
+  double NextPublishS() const;
+
+  std::uint64_t published() const { return published_; }
+  std::uint64_t rejected_commands() const { return rejected_commands_; }
+
+ private:
+  template <typename Message>
+  void Emit(const char* channel, const Message& message, std::int64_t utime);
+  void OnCommandMessage(const lcm::ReceiveBuffer* buffer, const std::string& channel,
+                        const operator_command_t* message);
+
+  LcmBridgeConfig config_;
+  std::unique_ptr<lcm::LCM> lcm_;
+  std::unique_ptr<lcm::LogFile> log_;
+  std::map<std::string, std::ofstream> csv_;
+  std::map<std::string, double> next_s_;  // per channel
+  RadioCounters previous_counters_;
+  double previous_radio_stats_s_ = 0.0;
+  std::vector<OperatorCommand> commands_;
+  std::uint64_t published_ = 0;
+  std::uint64_t rejected_commands_ = 0;
+};
+
+}  // namespace fireswarm::server

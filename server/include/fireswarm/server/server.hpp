@@ -1,0 +1,172 @@
+// The command server's core: the fleet (registry), the radio master (scheduler),
+// the mission (uploads, starts, progress), fire fusion and re-tasking, in one
+// pure class. `Step(now, received bytes) -> bursts`; no clock, socket, file or
+// LCM. What must survive a restart comes out as journal entries for an adapter
+// to append (journal.hpp), and Server::Restore rebuilds the core from them.
+//
+// Re-tasking: when a report opens a new tentative track, the nearest searching
+// vehicle with a good link (another than the reporter when one exists: its GPS
+// error is independent) is sent to loiter around it (seed 7.4) for
+// investigate_s and then resumes its lanes by itself. A track that is still
+// tentative when that investigation is over, with no report from the
+// investigator, is rejected (the hot spot was not seen again: a sun-heated rock).
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "fireswarm/common/local_frame.hpp"
+#include "fireswarm/radio/master_scheduler.hpp"
+#include "fireswarm/server/fire_fusion.hpp"
+#include "fireswarm/server/mission_manager.hpp"
+#include "fireswarm/server/vehicle_registry.hpp"
+
+namespace fireswarm::server {
+
+struct ServerConfig {
+  radio::SchedulerConfig radio;
+  double telemetry_hz = 1.0;  ///< per vehicle
+  LinkThresholds link;
+  FireFusionConfig fusion;
+  MissionManagerConfig mission;
+  bool auto_investigate = true;       ///< send a vehicle to each new tentative track
+  double investigate_s = 60.0;        ///< loiter time of an investigation, s (1..65535)
+  double investigate_radius_m = 0.0;  ///< 0: the vehicle's own loiter radius parameter
+  /// A tentative track is rejected this long after its investigation ended when
+  /// the investigator did not report it again, s (reports still in the air).
+  double reject_grace_s = 10.0;
+  /// Throws std::invalid_argument naming the field.
+  void Validate() const;
+};
+
+/// An operator's order (lcmtypes/operator_command_t.lcm's commands).
+struct OperatorCommand {
+  enum class Kind : std::uint8_t {
+    kStart = 1,
+    kAbort = 2,
+    kReturnAll = 3,
+    kInvestigatePoint = 4,
+    kRetaskVehicle = 5,
+  };
+  Kind kind = Kind::kStart;
+  std::uint8_t vehicle = 0;  ///< kRetaskVehicle (required), kInvestigatePoint (0 = server chooses)
+  common::LatLon point;      ///< kInvestigatePoint, kRetaskVehicle
+  double radius_m = 0.0;     ///< 0 = the configured radius
+  std::string reason;        ///< for the journal
+};
+
+enum class MissionState : std::int8_t {  // mission_status_t's STATE_* values
+  kIdle = 0,
+  kUploading = 1,
+  kRunning = 2,
+  kReturning = 3,
+  kComplete = 4,
+  kAborted = 5,
+};
+const char* ToString(MissionState state);
+
+/// One thing that must survive a restart: appended by the journal adapter as
+/// (time, kind, data), handed back to Server::Restore in the same order.
+struct JournalEntry {
+  double t_s = 0.0;
+  std::string kind;
+  nlohmann::json data;
+};
+
+/// An investigation the server ordered.
+struct Investigation {
+  std::uint8_t vehicle = 0;
+  std::int32_t track_id = 0;  ///< 0: an operator's point, not a track
+  double started_s = 0.0;
+  double until_s = 0.0;
+};
+
+class Server {
+ public:
+  /// `frame`: the local frame fire positions are fused in (the mission area's).
+  /// Throws std::invalid_argument as ServerConfig::Validate.
+  Server(const ServerConfig& config, const common::LocalFrame& frame);
+
+  /// Registers a vehicle with the registry and the scheduler. Throws
+  /// std::invalid_argument naming the ID when it is out of range or a duplicate.
+  void AddVehicle(int receiver_id, double now_s = 0.0);
+  /// The mission to fly (one per registered vehicle at most). Throws
+  /// std::invalid_argument when a drone's vehicle is not registered or a mission
+  /// is already loaded.
+  void LoadMission(std::vector<DroneMission> missions, double now_s = 0.0);
+
+  /// Carries out an operator's command at `now`. Returns false (and journals
+  /// nothing) when it cannot be done now, with the reason in `why` if given:
+  /// start without a mission or twice, an unknown vehicle, an invalid point.
+  bool Handle(const OperatorCommand& command, radio::Nanos now, std::string* why = nullptr);
+
+  /// Feeds the bytes received up to `now` and returns what to transmit.
+  std::vector<radio::Burst> Step(radio::Nanos now, std::span<const std::uint8_t> received);
+  /// When Step() must next be called without new bytes.
+  radio::Nanos NextWakeup() const;
+
+  /// Journal entries produced since the last call, in order.
+  std::vector<JournalEntry> TakeJournalEntries();
+  /// Rebuilds the server from the journal entries a previous instance produced:
+  /// the vehicles, the mission and each drone's phase (no second upload), every
+  /// fire report (tracks come back with their IDs) and rejection. Throws
+  /// std::runtime_error naming the entry (its index and kind) when one is malformed.
+  static Server Restore(const ServerConfig& config, const common::LocalFrame& frame,
+                        const std::vector<JournalEntry>& entries);
+
+  MissionState state() const { return state_; }
+  const VehicleRegistry& registry() const { return registry_; }
+  const FireFusion& fusion() const { return fusion_; }
+  const MissionManager* mission() const { return mission_ ? &*mission_ : nullptr; }
+  const radio::MasterScheduler& scheduler() const { return *scheduler_; }
+  const std::vector<Investigation>& investigations() const { return investigations_; }
+  const common::LocalFrame& frame() const { return frame_; }
+  /// Mission time of the first receipt of each (vehicle, report ID), s.
+  const std::map<std::pair<std::uint8_t, std::uint16_t>, double>& report_receipts() const {
+    return report_receipts_;
+  }
+  double mission_started_s() const { return mission_started_s_; }
+  /// Bytes the server has transmitted (all bursts) and received, since it started.
+  std::uint64_t bytes_sent() const { return bytes_sent_; }
+  std::uint64_t bytes_received() const { return bytes_received_; }
+
+ private:
+  void OnEvent(const radio::SchedulerEvent& event, double now_s);
+  void OnFireReport(const radio::FireReportReceived& received, double now_s);
+  void AfterFusion(const FireObservation& observation, const FireReportResult& result,
+                   double now_s);
+  void Investigate(std::uint8_t vehicle, common::LatLon point, double radius_m,
+                   std::int32_t track_id, double now_s);
+  std::optional<std::uint8_t> BestPlacedFor(const Eigen::Vector2d& point_ne_m,
+                                            std::uint8_t reporter, double now_s) const;
+  void SendToAll(radio::CommandType type);
+  void CheckInvestigations(double now_s);
+  void UpdateState(double now_s);
+  void Record(double t_s, std::string kind, nlohmann::json data);
+
+  ServerConfig config_;
+  common::LocalFrame frame_;
+  std::unique_ptr<radio::MasterScheduler> scheduler_;
+  VehicleRegistry registry_;
+  FireFusion fusion_;
+  std::vector<DroneMission> missions_;
+  std::optional<MissionManager> mission_;
+  MissionState state_ = MissionState::kIdle;
+  double mission_started_s_ = 0.0;
+  std::vector<Investigation> investigations_;
+  std::map<std::pair<std::uint8_t, std::uint16_t>, double> report_receipts_;
+  std::map<std::uint8_t, double> clock_offset_s_;  // mission time - vehicle clock, per vehicle
+  std::map<std::uint8_t, DronePhase> journaled_phases_;
+  std::vector<JournalEntry> journal_;
+  bool restoring_ = false;
+  std::uint64_t bytes_sent_ = 0;
+  std::uint64_t bytes_received_ = 0;
+};
+
+}  // namespace fireswarm::server

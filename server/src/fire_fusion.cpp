@@ -1,0 +1,351 @@
+// Fire-report fusion: see fire_fusion.hpp for the error model (per-vehicle GPS
+// bias plus independent per-report error) and why it was chosen.
+#include "fireswarm/server/fire_fusion.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <set>
+#include <stdexcept>
+#include <string>
+
+namespace fireswarm::server {
+namespace {
+
+// Receiver IDs that are not vehicles: the server and broadcast.
+constexpr std::uint8_t kServerId = 0;
+constexpr std::uint8_t kBroadcastId = 255;
+
+bool AllFinite(const FireObservation& report) {
+  return std::isfinite(report.detection_time_s) && report.position_ne_m.allFinite() &&
+         report.covariance_ne_m2.allFinite() && report.observer_ne_m.allFinite() &&
+         std::isfinite(report.confidence);
+}
+
+bool IsValid(const FireObservation& report) {
+  return report.vehicle_id != kServerId && report.vehicle_id != kBroadcastId && AllFinite(report);
+}
+
+// The symmetric part of `m` with its eigenvalues raised to at least `floor_m2`:
+// the nearest (in the eigenvalues) symmetric matrix that is safely positive definite.
+Eigen::Matrix2d WithEigenvalueFloor(const Eigen::Matrix2d& m, double floor_m2) {
+  const Eigen::Matrix2d symmetric = 0.5 * (m + m.transpose());
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> solver(symmetric);
+  const Eigen::Vector2d clamped = solver.eigenvalues().cwiseMax(floor_m2);
+  return solver.eigenvectors() * clamped.asDiagonal() * solver.eigenvectors().transpose();
+}
+
+double Squared(double x) {
+  return x * x;
+}
+
+Eigen::Matrix2d BiasCovariance(const FireFusionConfig& config) {
+  return Squared(config.vehicle_bias_sigma_m) * Eigen::Matrix2d::Identity();
+}
+
+// The part of a report's error that is independent from the vehicle's other
+// reports: its covariance less the vehicle bias, kept positive definite. A
+// report claiming less than the bias is thereby treated as bias + floor.
+Eigen::Matrix2d IndependentCovariance(const FireObservation& report,
+                                      const FireFusionConfig& config) {
+  const Eigen::Matrix2d regularised =
+      WithEigenvalueFloor(report.covariance_ne_m2, Squared(config.min_report_sigma_m));
+  return WithEigenvalueFloor(regularised - BiasCovariance(config),
+                             Squared(config.min_independent_sigma_m));
+}
+
+struct Estimate {
+  Eigen::Vector2d position_ne_m = Eigen::Vector2d::Zero();
+  Eigen::Matrix2d covariance_ne_m2 = Eigen::Matrix2d::Zero();
+};
+
+// Batch fusion of a track's reports, always from scratch and in a fixed order
+// (vehicles ascending, each vehicle's reports in arrival order), so that a
+// track restored from its reports gets bit-identical numbers.
+Estimate FuseReports(const std::vector<FireObservation>& reports, const FireFusionConfig& config) {
+  struct Information {
+    Eigen::Matrix2d matrix = Eigen::Matrix2d::Zero();  // sum of N^-1, 1/m^2
+    Eigen::Vector2d vector = Eigen::Vector2d::Zero();  // sum of N^-1 z, 1/m
+  };
+  // Step 1: per vehicle, the independent parts weighted by their information.
+  std::map<std::uint8_t, Information> per_vehicle;
+  for (const FireObservation& report : reports) {
+    const Eigen::Matrix2d information = IndependentCovariance(report, config).inverse();
+    Information& sum = per_vehicle[report.vehicle_id];
+    sum.matrix += information;
+    sum.vector += information * report.position_ne_m;
+  }
+  // Step 2: each vehicle's estimate carries its bias once; vehicles are independent.
+  const Eigen::Matrix2d bias = BiasCovariance(config);
+  Information total;
+  for (const auto& [vehicle, sum] : per_vehicle) {
+    const Eigen::Matrix2d independent = sum.matrix.inverse();
+    const Eigen::Vector2d position = independent * sum.vector;
+    const Eigen::Matrix2d information = (independent + bias).inverse();
+    total.matrix += information;
+    total.vector += information * position;
+  }
+  Estimate estimate;
+  estimate.covariance_ne_m2 = total.matrix.inverse();
+  estimate.position_ne_m = estimate.covariance_ne_m2 * total.vector;
+  // Symmetric by construction up to rounding; make it exactly so for consumers.
+  estimate.covariance_ne_m2 =
+      0.5 * (estimate.covariance_ne_m2 + estimate.covariance_ne_m2.transpose());
+  return estimate;
+}
+
+// Recomputes every derived field of `track` from its reports.
+void Recompute(FireTrack& track, const FireFusionConfig& config) {
+  const Estimate estimate = FuseReports(track.reports, config);
+  track.position_ne_m = estimate.position_ne_m;
+  track.covariance_ne_m2 = estimate.covariance_ne_m2;
+  track.report_count = static_cast<std::int32_t>(track.reports.size());
+  std::set<std::uint8_t> vehicles;
+  track.first_seen_s = track.reports.front().detection_time_s;
+  track.last_seen_s = track.reports.front().detection_time_s;
+  track.max_confidence = track.reports.front().confidence;
+  for (const FireObservation& report : track.reports) {
+    vehicles.insert(report.vehicle_id);
+    track.first_seen_s = std::min(track.first_seen_s, report.detection_time_s);
+    track.last_seen_s = std::max(track.last_seen_s, report.detection_time_s);
+    track.max_confidence = std::max(track.max_confidence, report.confidence);
+  }
+  track.vehicle_ids.assign(vehicles.begin(), vehicles.end());
+}
+
+// Two reports are independent views when two vehicles made them, or one
+// vehicle on separate passes (apart both in observer position and in time).
+bool IndependentViews(const FireObservation& a, const FireObservation& b,
+                      const FireFusionConfig& config) {
+  if (a.vehicle_id != b.vehicle_id) return true;
+  return (a.observer_ne_m - b.observer_ne_m).norm() >= config.min_pass_separation_m &&
+         std::abs(a.detection_time_s - b.detection_time_s) >= config.min_pass_interval_s;
+}
+
+// True when reports[index] and some other report are independent views.
+bool ConfirmsWithOthers(const std::vector<FireObservation>& reports, std::size_t index,
+                        const FireFusionConfig& config) {
+  for (std::size_t other = 0; other < reports.size(); ++other) {
+    if (other != index && IndependentViews(reports[index], reports[other], config)) return true;
+  }
+  return false;
+}
+
+bool HasIndependentViews(const std::vector<FireObservation>& reports,
+                         const FireFusionConfig& config) {
+  for (std::size_t index = 0; index < reports.size(); ++index) {
+    if (ConfirmsWithOthers(reports, index, config)) return true;
+  }
+  return false;
+}
+
+void RequireFinitePositive(double value, const char* field) {
+  if (!std::isfinite(value) || value <= 0.0) {
+    throw std::invalid_argument(std::string("FireFusionConfig.") + field +
+                                " must be finite and positive, got " + std::to_string(value));
+  }
+}
+
+bool IsKnownStatus(FireTrackStatus status) {
+  return status == FireTrackStatus::kTentative || status == FireTrackStatus::kConfirmed ||
+         status == FireTrackStatus::kRejected;
+}
+
+[[noreturn]] void ThrowRestore(std::int32_t track_id, const std::string& problem) {
+  throw std::invalid_argument("FireFusion::Restore: track " + std::to_string(track_id) + ": " +
+                              problem);
+}
+
+}  // namespace
+
+void FireFusionConfig::Validate() const {
+  RequireFinitePositive(gate_chi_square, "gate_chi_square");
+  RequireFinitePositive(min_gate_m, "min_gate_m");
+  RequireFinitePositive(max_gate_m, "max_gate_m");
+  RequireFinitePositive(vehicle_bias_sigma_m, "vehicle_bias_sigma_m");
+  RequireFinitePositive(min_independent_sigma_m, "min_independent_sigma_m");
+  RequireFinitePositive(min_report_sigma_m, "min_report_sigma_m");
+  RequireFinitePositive(min_pass_separation_m, "min_pass_separation_m");
+  RequireFinitePositive(min_pass_interval_s, "min_pass_interval_s");
+  if (min_gate_m > max_gate_m) {
+    throw std::invalid_argument("FireFusionConfig.min_gate_m (" + std::to_string(min_gate_m) +
+                                ") must not exceed max_gate_m (" + std::to_string(max_gate_m) +
+                                ")");
+  }
+}
+
+std::string_view ToString(FireTrackStatus status) {
+  switch (status) {
+    case FireTrackStatus::kTentative:
+      return "tentative";
+    case FireTrackStatus::kConfirmed:
+      return "confirmed";
+    case FireTrackStatus::kRejected:
+      return "rejected";
+  }
+  return "unknown";
+}
+
+std::string_view ToString(FireReportOutcome outcome) {
+  switch (outcome) {
+    case FireReportOutcome::kNewTrack:
+      return "new_track";
+    case FireReportOutcome::kUpdated:
+      return "updated";
+    case FireReportOutcome::kConfirmed:
+      return "confirmed";
+    case FireReportOutcome::kAbsorbed:
+      return "absorbed";
+    case FireReportOutcome::kDuplicate:
+      return "duplicate";
+    case FireReportOutcome::kInvalid:
+      return "invalid";
+  }
+  return "unknown";
+}
+
+FireObservation ObservationFromReport(const radio::FireReport& report,
+                                      const common::LocalFrame& frame, double detection_time_s) {
+  const common::EastNorth fire = frame.ToLocal({report.lat_deg, report.lon_deg});
+  const common::EastNorth observer =
+      frame.ToLocal({report.observer_lat_deg, report.observer_lon_deg});
+  const double cross_m2 = report.correlation * report.sigma_north_m * report.sigma_east_m;
+  FireObservation observation;
+  observation.vehicle_id = report.header.sender;
+  observation.report_id = report.report_id;
+  observation.detection_time_s = detection_time_s;
+  observation.position_ne_m = Eigen::Vector2d(fire.north_m, fire.east_m);
+  observation.covariance_ne_m2 << Squared(report.sigma_north_m), cross_m2, cross_m2,
+      Squared(report.sigma_east_m);
+  observation.observer_ne_m = Eigen::Vector2d(observer.north_m, observer.east_m);
+  observation.confidence = report.confidence;
+  return observation;
+}
+
+FireFusion::FireFusion(FireFusionConfig config) : config_(config) {
+  config_.Validate();
+}
+
+FireFusion FireFusion::Restore(FireFusionConfig config, std::vector<FireTrack> tracks,
+                               std::int32_t next_track_id) {
+  FireFusion fusion(config);
+  if (next_track_id <= 0) {
+    throw std::invalid_argument("FireFusion::Restore: next_track_id must be positive, got " +
+                                std::to_string(next_track_id));
+  }
+  std::sort(tracks.begin(), tracks.end(),
+            [](const FireTrack& a, const FireTrack& b) { return a.track_id < b.track_id; });
+  for (std::size_t i = 0; i < tracks.size(); ++i) {
+    FireTrack& track = tracks[i];
+    if (track.track_id <= 0) ThrowRestore(track.track_id, "track_id must be positive");
+    if (i > 0 && tracks[i - 1].track_id == track.track_id)
+      ThrowRestore(track.track_id, "duplicate track_id");
+    if (track.track_id >= next_track_id) {
+      ThrowRestore(track.track_id,
+                   "track_id not below next_track_id " + std::to_string(next_track_id));
+    }
+    if (!IsKnownStatus(track.status)) ThrowRestore(track.track_id, "unknown status");
+    if (track.reports.empty()) ThrowRestore(track.track_id, "no reports");
+    for (const FireObservation& report : track.reports) {
+      if (!IsValid(report)) {
+        ThrowRestore(track.track_id, "invalid report " + std::to_string(report.report_id) +
+                                         " of vehicle " + std::to_string(report.vehicle_id));
+      }
+      if (!fusion.seen_.emplace(ReportKey{report.vehicle_id, report.report_id}, track.track_id)
+               .second) {
+        ThrowRestore(track.track_id, "report " + std::to_string(report.report_id) + " of vehicle " +
+                                         std::to_string(report.vehicle_id) + " appears twice");
+      }
+    }
+    Recompute(track, fusion.config_);
+    if (track.status == FireTrackStatus::kTentative &&
+        HasIndependentViews(track.reports, fusion.config_)) {
+      track.status = FireTrackStatus::kConfirmed;
+    }
+  }
+  fusion.tracks_ = std::move(tracks);
+  fusion.next_track_id_ = next_track_id;
+  return fusion;
+}
+
+FireReportResult FireFusion::Add(const FireObservation& report) {
+  if (!IsValid(report)) return {FireReportOutcome::kInvalid, 0};
+  const ReportKey key{report.vehicle_id, report.report_id};
+  if (const auto seen = seen_.find(key); seen != seen_.end()) {
+    return {FireReportOutcome::kDuplicate, seen->second};
+  }
+
+  const std::optional<std::size_t> index = Associate(report);
+  if (!index) {
+    FireTrack track;
+    track.track_id = next_track_id_++;
+    track.status = FireTrackStatus::kTentative;
+    track.reports.push_back(report);
+    Recompute(track, config_);
+    seen_.emplace(key, track.track_id);
+    tracks_.push_back(std::move(track));
+    return {FireReportOutcome::kNewTrack, tracks_.back().track_id};
+  }
+
+  FireTrack& track = tracks_[*index];
+  track.reports.push_back(report);
+  Recompute(track, config_);
+  seen_.emplace(key, track.track_id);
+  switch (track.status) {
+    case FireTrackStatus::kRejected:
+      return {FireReportOutcome::kAbsorbed, track.track_id};
+    case FireTrackStatus::kTentative:
+      if (ConfirmsWithOthers(track.reports, track.reports.size() - 1, config_)) {
+        track.status = FireTrackStatus::kConfirmed;
+        return {FireReportOutcome::kConfirmed, track.track_id};
+      }
+      break;
+    case FireTrackStatus::kConfirmed:
+      break;
+  }
+  return {FireReportOutcome::kUpdated, track.track_id};
+}
+
+std::optional<std::size_t> FireFusion::Associate(const FireObservation& report) const {
+  // The report's covariance as its own track would have it (bias included).
+  const Eigen::Matrix2d report_covariance =
+      IndependentCovariance(report, config_) + BiasCovariance(config_);
+  std::optional<std::size_t> best;
+  double best_distance2 = 0.0;
+  for (std::size_t i = 0; i < tracks_.size(); ++i) {
+    const FireTrack& track = tracks_[i];
+    const Eigen::Vector2d innovation = report.position_ne_m - track.position_ne_m;
+    const double distance_m = innovation.norm();
+    if (distance_m > config_.max_gate_m) continue;
+    const Eigen::Matrix2d innovation_covariance = track.covariance_ne_m2 + report_covariance;
+    const double mahalanobis2 = innovation.dot(innovation_covariance.inverse() * innovation);
+    if (mahalanobis2 > config_.gate_chi_square && distance_m > config_.min_gate_m) continue;
+    // Strictly smaller: ties go to the lower track ID (tracks_ is ascending).
+    if (!best || mahalanobis2 < best_distance2) {
+      best = i;
+      best_distance2 = mahalanobis2;
+    }
+  }
+  return best;
+}
+
+bool FireFusion::Reject(std::int32_t track_id) {
+  FireTrack* track = FindMutable(track_id);
+  if (track == nullptr) return false;
+  track->status = FireTrackStatus::kRejected;
+  return true;
+}
+
+const FireTrack* FireFusion::Find(std::int32_t track_id) const {
+  const auto it =
+      std::lower_bound(tracks_.begin(), tracks_.end(), track_id,
+                       [](const FireTrack& track, std::int32_t id) { return track.track_id < id; });
+  return it != tracks_.end() && it->track_id == track_id ? &*it : nullptr;
+}
+
+FireTrack* FireFusion::FindMutable(std::int32_t track_id) {
+  return const_cast<FireTrack*>(std::as_const(*this).Find(track_id));
+}
+
+}  // namespace fireswarm::server

@@ -1,0 +1,207 @@
+// The LCM adapter: the one place the server core meets lcm::LCM and log files.
+#include "fireswarm/server/lcm_bridge.hpp"
+
+#include <cctype>
+#include <cmath>
+#include <lcm/lcm-cpp.hpp>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+#include <system_error>
+#include <utility>
+#include <vector>
+
+namespace fireswarm::server {
+
+namespace {
+
+// CSV rows, one function per message type: the header line and the rows of one
+// message (a track list gives one row per track).
+std::string CsvHeader(const vehicle_state_t&) {
+  return "utime,receiver_id,vehicle_time_ms,lat_deg,lon_deg,altitude_m,velocity_north_mps,"
+         "velocity_east_mps,velocity_up_mps,roll_deg,pitch_deg,heading_deg,battery_v,"
+         "battery_percent,flight_mode,flags,pending_reports,mission_id,waypoint_index,"
+         "link_state,telemetry_age_s,missed_replies";
+}
+void CsvRows(std::ostream& out, const vehicle_state_t& m) {
+  out << m.utime << ',' << m.receiver_id << ',' << m.vehicle_time_ms << ',' << m.lat_deg << ','
+      << m.lon_deg << ',' << m.altitude_m << ',' << m.velocity_north_mps << ','
+      << m.velocity_east_mps << ',' << m.velocity_up_mps << ',' << m.roll_deg << ',' << m.pitch_deg
+      << ',' << m.heading_deg << ',' << m.battery_v << ',' << m.battery_percent << ','
+      << int{m.flight_mode} << ',' << m.flags << ',' << m.pending_reports << ',' << m.mission_id
+      << ',' << m.waypoint_index << ',' << int{m.link_state} << ',' << m.telemetry_age_s << ','
+      << m.missed_replies << '\n';
+}
+
+std::string CsvHeader(const fire_track_list_t&) {
+  return "utime,track_id,status,lat_deg,lon_deg,covariance_nn_m2,covariance_ne_m2,"
+         "covariance_ee_m2,report_count,vehicle_count,first_seen_utime,last_seen_utime";
+}
+void CsvRows(std::ostream& out, const fire_track_list_t& list) {
+  for (const fire_track_t& m : list.tracks) {
+    out << list.utime << ',' << m.track_id << ',' << int{m.status} << ',' << m.lat_deg << ','
+        << m.lon_deg << ',' << m.covariance_m2[0][0] << ',' << m.covariance_m2[0][1] << ','
+        << m.covariance_m2[1][1] << ',' << m.report_count << ',' << m.vehicle_count << ','
+        << m.first_seen_utime << ',' << m.last_seen_utime << '\n';
+  }
+}
+
+std::string CsvHeader(const mission_status_t&) {
+  return "utime,state,mission_id,coverage_fraction,elapsed_s,vehicles_active,vehicles_lost,"
+         "fires_tentative,fires_confirmed";
+}
+void CsvRows(std::ostream& out, const mission_status_t& m) {
+  out << m.utime << ',' << int{m.state} << ',' << m.mission_id << ',' << m.coverage_fraction << ','
+      << m.elapsed_s << ',' << m.vehicles_active << ',' << m.vehicles_lost << ','
+      << m.fires_tentative << ',' << m.fires_confirmed << '\n';
+}
+
+std::string CsvHeader(const radio_stats_t&) {
+  return "utime,window_s,busy_fraction,payload_bytes_per_s,frames_sent,frames_received,"
+         "checksum_errors,collisions,retries,timeouts";
+}
+void CsvRows(std::ostream& out, const radio_stats_t& m) {
+  out << m.utime << ',' << m.window_s << ',' << m.busy_fraction << ',' << m.payload_bytes_per_s
+      << ',' << m.frames_sent << ',' << m.frames_received << ',' << m.checksum_errors << ','
+      << m.collisions << ',' << m.retries << ',' << m.timeouts << '\n';
+}
+
+std::string CsvName(const char* channel) {
+  std::string name(channel);
+  for (char& c : name) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return name + ".csv";
+}
+
+double PeriodS(double hz) {
+  return hz > 0.0 ? 1.0 / hz : std::numeric_limits<double>::infinity();
+}
+
+}  // namespace
+
+LcmBridge::LcmBridge(const LcmBridgeConfig& config) : config_(config) {
+  config_.rates.Validate();
+  if (!config_.url.empty()) {
+    lcm_ = std::make_unique<lcm::LCM>(config_.url);
+    if (!lcm_->good()) {
+      throw std::runtime_error("LCM could not start on '" + config_.url +
+                               "' (for udpm:// on one machine, add a multicast route on lo: "
+                               "see scripts/install-deps.sh)");
+    }
+    lcm_->subscribe(kOperatorCommandChannel, &LcmBridge::OnCommandMessage, this);
+  }
+  if (config_.log_path) {
+    log_ = std::make_unique<lcm::LogFile>(config_.log_path->string(), "w");
+    if (!log_->good()) {
+      throw std::runtime_error("cannot create the LCM log " + config_.log_path->string());
+    }
+  }
+  if (config_.csv_dir) {
+    std::error_code error;
+    std::filesystem::create_directories(*config_.csv_dir, error);
+    if (error) {
+      throw std::runtime_error("cannot create the CSV directory " + config_.csv_dir->string() +
+                               ": " + error.message());
+    }
+  }
+  for (const char* channel :
+       {kVehicleStateChannel, kFireTracksChannel, kMissionStatusChannel, kRadioStatsChannel}) {
+    next_s_[channel] = 0.0;
+  }
+}
+
+LcmBridge::~LcmBridge() = default;
+
+void LcmBridge::OnCommandMessage(const lcm::ReceiveBuffer*, const std::string&,
+                                 const operator_command_t* message) {
+  // An LCM callback: never throws.
+  std::string why;
+  if (const std::optional<OperatorCommand> command = FromLcm(*message, &why)) {
+    commands_.push_back(*command);
+  } else {
+    ++rejected_commands_;
+  }
+}
+
+template <typename Message>
+void LcmBridge::Emit(const char* channel, const Message& message, std::int64_t utime) {
+  ++published_;
+  if (lcm_) lcm_->publish(channel, &message);
+  if (log_) {
+    std::vector<std::uint8_t> data(static_cast<std::size_t>(message.getEncodedSize()));
+    message.encode(data.data(), 0, static_cast<int>(data.size()));
+    lcm::LogEvent event{};
+    event.timestamp = utime;
+    event.channel = channel;
+    event.datalen = static_cast<std::int32_t>(data.size());
+    event.data = data.data();
+    if (log_->writeEvent(&event) != 0) {
+      throw std::runtime_error("cannot write the LCM log " + config_.log_path->string());
+    }
+  }
+  if (config_.csv_dir) {
+    const std::string name = CsvName(channel);
+    auto found = csv_.find(name);
+    if (found == csv_.end()) {
+      const std::filesystem::path path = *config_.csv_dir / name;
+      std::ofstream file(path);
+      if (!file) throw std::runtime_error("cannot create " + path.string());
+      file.precision(10);
+      file << CsvHeader(message) << '\n';
+      found = csv_.emplace(name, std::move(file)).first;
+    }
+    CsvRows(found->second, message);
+  }
+}
+
+void LcmBridge::Publish(const Server& server, double now_s, std::int64_t utime,
+                        std::int64_t utime_at_zero) {
+  const LcmRates& rates = config_.rates;
+  const auto due = [&](const char* channel, double hz) {
+    double& next = next_s_[channel];
+    if (hz <= 0.0 || now_s < next) return false;
+    // Keep the rate's grid; after a long gap, resume from now.
+    next = std::max(next + PeriodS(hz), now_s);
+    return true;
+  };
+  if (due(kVehicleStateChannel, rates.vehicle_state_hz)) {
+    for (const std::uint8_t id : server.registry().ids()) {
+      Emit(kVehicleStateChannel, ToVehicleState(server, id, now_s, utime), utime);
+    }
+  }
+  if (due(kFireTracksChannel, rates.fire_tracks_hz)) {
+    Emit(kFireTracksChannel, ToFireTrackList(server, utime, utime_at_zero), utime);
+  }
+  if (due(kMissionStatusChannel, rates.mission_status_hz)) {
+    Emit(kMissionStatusChannel, ToMissionStatus(server, now_s, utime), utime);
+  }
+  if (due(kRadioStatsChannel, rates.radio_stats_hz)) {
+    const double window_s = now_s - previous_radio_stats_s_;
+    previous_radio_stats_s_ = now_s;
+    Emit(kRadioStatsChannel, ToRadioStats(server, now_s, utime, window_s, previous_counters_),
+         utime);
+  }
+}
+
+std::vector<OperatorCommand> LcmBridge::TakeCommands() {
+  if (lcm_) {
+    while (lcm_->handleTimeout(0) > 0) {
+    }
+  }
+  return std::exchange(commands_, {});
+}
+
+double LcmBridge::NextPublishS() const {
+  double next = std::numeric_limits<double>::infinity();
+  const LcmRates& rates = config_.rates;
+  const std::pair<const char*, double> channels[] = {
+      {kVehicleStateChannel, rates.vehicle_state_hz},
+      {kFireTracksChannel, rates.fire_tracks_hz},
+      {kMissionStatusChannel, rates.mission_status_hz},
+      {kRadioStatsChannel, rates.radio_stats_hz}};
+  for (const auto& [channel, hz] : channels) {
+    if (hz > 0.0) next = std::min(next, next_s_.at(channel));
+  }
+  return next;
+}
+
+}  // namespace fireswarm::server

@@ -1,0 +1,186 @@
+// Server state -> LCM messages, and operator_command_t -> OperatorCommand. Pure.
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "fireswarm/server/lcm_bridge.hpp"
+
+namespace fireswarm::server {
+
+namespace {
+
+constexpr double kMicrosPerSecond = 1e6;
+
+std::int64_t Utime(std::int64_t utime_at_zero, double seconds) {
+  return utime_at_zero + static_cast<std::int64_t>(std::llround(seconds * kMicrosPerSecond));
+}
+
+}  // namespace
+
+void LcmRates::Validate() const {
+  const auto check = [](double hz, const char* name) {
+    if (!(hz >= 0.0) || !std::isfinite(hz)) {
+      throw std::invalid_argument(std::string(name) + " must be >= 0 Hz, got " +
+                                  std::to_string(hz));
+    }
+  };
+  check(vehicle_state_hz, "vehicle_state_hz");
+  check(fire_tracks_hz, "fire_tracks_hz");
+  check(mission_status_hz, "mission_status_hz");
+  check(radio_stats_hz, "radio_stats_hz");
+}
+
+vehicle_state_t ToVehicleState(const Server& server, std::uint8_t vehicle, double now_s,
+                               std::int64_t utime) {
+  const VehicleState& state = server.registry().state(vehicle);
+  vehicle_state_t m{};
+  m.utime = utime;
+  m.receiver_id = vehicle;
+  m.link_state = static_cast<std::int8_t>(server.registry().LinkAt(vehicle, now_s));
+  m.missed_replies =
+      static_cast<std::int32_t>(std::min<std::uint32_t>(state.missed_replies, INT32_MAX));
+  m.telemetry_age_s = server.registry().TelemetryAgeS(vehicle, now_s).value_or(-1.0);
+  if (!state.telemetry) return m;
+  const radio::Telemetry& t = *state.telemetry;
+  m.vehicle_time_ms = t.time_ms;
+  m.lat_deg = t.lat_deg;
+  m.lon_deg = t.lon_deg;
+  m.altitude_m = t.altitude_m;
+  m.velocity_north_mps = t.velocity_north_mps;
+  m.velocity_east_mps = t.velocity_east_mps;
+  m.velocity_up_mps = t.climb_rate_mps;
+  m.roll_deg = t.roll_deg;
+  m.pitch_deg = t.pitch_deg;
+  m.heading_deg = t.heading_deg;
+  m.battery_v = t.battery_v;
+  m.battery_percent = t.battery_percent;
+  m.flight_mode = static_cast<std::int8_t>(t.mode);
+  m.flags = t.flags;
+  m.pending_reports = t.pending_reports;
+  m.mission_id = t.mission_id;
+  m.waypoint_index = t.waypoint_index;
+  return m;
+}
+
+fire_track_list_t ToFireTrackList(const Server& server, std::int64_t utime,
+                                  std::int64_t utime_at_zero) {
+  fire_track_list_t list{};
+  list.utime = utime;
+  for (const FireTrack& track : server.fusion().tracks()) {
+    fire_track_t m{};
+    m.utime = utime;
+    m.track_id = track.track_id;
+    m.status = static_cast<std::int8_t>(track.status);
+    const common::LatLon where =
+        server.frame().ToGeodetic({track.position_ne_m.y(), track.position_ne_m.x()});
+    m.lat_deg = where.lat_deg;
+    m.lon_deg = where.lon_deg;
+    for (int r = 0; r < 2; ++r) {
+      for (int c = 0; c < 2; ++c) m.covariance_m2[r][c] = track.covariance_ne_m2(r, c);
+    }
+    m.report_count = track.report_count;
+    m.vehicle_count = static_cast<std::int16_t>(track.vehicle_ids.size());
+    for (const std::uint8_t id : track.vehicle_ids) m.vehicle_ids.push_back(id);
+    m.first_seen_utime = Utime(utime_at_zero, track.first_seen_s);
+    m.last_seen_utime = Utime(utime_at_zero, track.last_seen_s);
+    list.tracks.push_back(std::move(m));
+  }
+  list.track_count = static_cast<std::int32_t>(list.tracks.size());
+  return list;
+}
+
+mission_status_t ToMissionStatus(const Server& server, double now_s, std::int64_t utime) {
+  mission_status_t m{};
+  m.utime = utime;
+  m.state = static_cast<std::int8_t>(server.state());
+  const MissionManager* mission = server.mission();
+  m.mission_id = 0;
+  if (mission != nullptr && !mission->vehicles().empty()) m.mission_id = 1;
+  // The server sees the fleet only through telemetry: its coverage estimate is the
+  // share of the planned waypoints passed (the plan covers the whole area).
+  m.coverage_fraction = mission != nullptr ? mission->WaypointFraction() : 0.0;
+  m.elapsed_s = server.state() == MissionState::kIdle ? 0.0 : now_s - server.mission_started_s();
+  m.vehicles_lost = static_cast<std::int16_t>(server.registry().LostAt(now_s).size());
+  m.vehicles_active = static_cast<std::int16_t>(server.registry().ActiveAt(now_s).size());
+  for (const FireTrack& track : server.fusion().tracks()) {
+    if (track.status == FireTrackStatus::kTentative) ++m.fires_tentative;
+    if (track.status == FireTrackStatus::kConfirmed) ++m.fires_confirmed;
+  }
+  return m;
+}
+
+radio_stats_t ToRadioStats(const Server& server, double now_s, std::int64_t utime, double window_s,
+                           RadioCounters& previous) {
+  const radio::SchedulerStats& stats = server.scheduler().stats();
+  const radio::ParserStats& parser = server.scheduler().parser_stats();
+  radio_stats_t m{};
+  m.utime = utime;
+  m.window_s = window_s;
+  if (window_s > 0.0) {
+    m.payload_bytes_per_s =
+        static_cast<double>(stats.payload_bytes - previous.stats.payload_bytes) / window_s;
+    // What the server hears plus what it sends: both occupy the one channel.
+    // Turnarounds and idle slots are not counted, so this is a lower bound.
+    const radio::LinkTiming& timing = server.scheduler().config().timing;
+    const double airtime_s =
+        radio::ToSeconds(timing.AirtimeOf((server.bytes_sent() - previous.bytes_sent) +
+                                          (server.bytes_received() - previous.bytes_received)));
+    m.busy_fraction = std::clamp(airtime_s / window_s, 0.0, 1.0);
+  }
+  m.frames_sent = static_cast<std::int64_t>(stats.polls + stats.schedules + stats.requests_sent +
+                                            stats.report_acks_sent);
+  m.frames_received = static_cast<std::int64_t>(parser.frames);
+  m.checksum_errors = static_cast<std::int64_t>(parser.checksum_errors);
+  m.collisions = 0;  // a receiver cannot tell a collision from a loss
+  m.retries = static_cast<std::int64_t>(stats.retries);
+  m.timeouts = static_cast<std::int64_t>(stats.missed_replies);
+  for (const std::uint8_t id : server.registry().ids()) {
+    m.vehicle_ids.push_back(id);
+    m.telemetry_age_s.push_back(server.registry().TelemetryAgeS(id, now_s).value_or(-1.0));
+  }
+  m.vehicle_count = static_cast<std::int16_t>(m.vehicle_ids.size());
+  previous = RadioCounters{stats, server.bytes_sent(), server.bytes_received()};
+  return m;
+}
+
+std::optional<OperatorCommand> FromLcm(const operator_command_t& message, std::string* why) {
+  const auto refuse = [&](std::string reason) -> std::optional<OperatorCommand> {
+    if (why != nullptr) *why = std::move(reason);
+    return std::nullopt;
+  };
+  OperatorCommand command;
+  switch (message.command) {
+    case operator_command_t::START:
+      command.kind = OperatorCommand::Kind::kStart;
+      break;
+    case operator_command_t::ABORT:
+      command.kind = OperatorCommand::Kind::kAbort;
+      break;
+    case operator_command_t::RETURN_ALL:
+      command.kind = OperatorCommand::Kind::kReturnAll;
+      break;
+    case operator_command_t::INVESTIGATE_POINT:
+      command.kind = OperatorCommand::Kind::kInvestigatePoint;
+      break;
+    case operator_command_t::RETASK_VEHICLE:
+      command.kind = OperatorCommand::Kind::kRetaskVehicle;
+      break;
+    default:
+      return refuse("unknown command " + std::to_string(message.command));
+  }
+  if (message.target_vehicle < 0 || message.target_vehicle > kLastVehicleId) {
+    return refuse("target_vehicle " + std::to_string(message.target_vehicle) +
+                  " is outside 0..254");
+  }
+  if (!(message.radius_m >= 0.0) || !std::isfinite(message.radius_m)) {
+    return refuse("radius_m must be >= 0");
+  }
+  command.vehicle = static_cast<std::uint8_t>(message.target_vehicle);
+  command.point = {message.lat_deg, message.lon_deg};
+  command.radius_m = message.radius_m;
+  command.reason = message.reason;
+  return command;
+}
+
+}  // namespace fireswarm::server

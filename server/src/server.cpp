@@ -1,0 +1,452 @@
+#include "fireswarm/server/server.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <utility>
+#include <variant>
+
+namespace fireswarm::server {
+
+namespace {
+
+constexpr double kMaxInvestigateS = 65'535.0;  // Command::duration_s is 16 bits
+constexpr double kMillisPerSecond = 1e3;
+
+double Seconds(radio::Nanos t) {
+  return radio::ToSeconds(t);
+}
+
+nlohmann::json WaypointsJson(const std::vector<radio::Waypoint>& waypoints) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const radio::Waypoint& w : waypoints) {
+    list.push_back({w.lat_deg, w.lon_deg, w.altitude_m, w.speed_mps, w.flags});
+  }
+  return list;
+}
+
+std::vector<radio::Waypoint> WaypointsFrom(const nlohmann::json& list) {
+  std::vector<radio::Waypoint> waypoints;
+  for (const nlohmann::json& item : list) {
+    radio::Waypoint w;
+    w.lat_deg = item.at(0).get<double>();
+    w.lon_deg = item.at(1).get<double>();
+    w.altitude_m = item.at(2).get<double>();
+    w.speed_mps = item.at(3).get<double>();
+    w.flags = item.at(4).get<std::uint8_t>();
+    waypoints.push_back(w);
+  }
+  return waypoints;
+}
+
+nlohmann::json ObservationJson(const FireObservation& o) {
+  return {{"vehicle", o.vehicle_id},
+          {"report_id", o.report_id},
+          {"detection_s", o.detection_time_s},
+          {"position_ne_m", {o.position_ne_m.x(), o.position_ne_m.y()}},
+          {"covariance_ne_m2",
+           {o.covariance_ne_m2(0, 0), o.covariance_ne_m2(0, 1), o.covariance_ne_m2(1, 1)}},
+          {"observer_ne_m", {o.observer_ne_m.x(), o.observer_ne_m.y()}},
+          {"confidence", o.confidence}};
+}
+
+FireObservation ObservationFrom(const nlohmann::json& j) {
+  FireObservation o;
+  o.vehicle_id = j.at("vehicle").get<std::uint8_t>();
+  o.report_id = j.at("report_id").get<std::uint16_t>();
+  o.detection_time_s = j.at("detection_s").get<double>();
+  o.position_ne_m = {j.at("position_ne_m").at(0).get<double>(),
+                     j.at("position_ne_m").at(1).get<double>()};
+  const nlohmann::json& c = j.at("covariance_ne_m2");
+  o.covariance_ne_m2 << c.at(0).get<double>(), c.at(1).get<double>(), c.at(1).get<double>(),
+      c.at(2).get<double>();
+  o.observer_ne_m = {j.at("observer_ne_m").at(0).get<double>(),
+                     j.at("observer_ne_m").at(1).get<double>()};
+  o.confidence = j.at("confidence").get<double>();
+  return o;
+}
+
+Eigen::Vector2d NorthEast(const common::LocalFrame& frame, common::LatLon point) {
+  const common::EastNorth local = frame.ToLocal(point);
+  return {local.north_m, local.east_m};
+}
+
+}  // namespace
+
+void ServerConfig::Validate() const {
+  radio.Validate();
+  fusion.Validate();
+  if (!(telemetry_hz > 0.0) || !std::isfinite(telemetry_hz)) {
+    throw std::invalid_argument("telemetry_hz must be a positive number");
+  }
+  if (!(investigate_s >= 1.0 && investigate_s <= kMaxInvestigateS)) {
+    throw std::invalid_argument("investigate_s must be in [1, 65535] s");
+  }
+  if (!(investigate_radius_m >= 0.0) || !std::isfinite(investigate_radius_m)) {
+    throw std::invalid_argument("investigate_radius_m must be >= 0");
+  }
+  if (!(reject_grace_s >= 0.0) || !std::isfinite(reject_grace_s)) {
+    throw std::invalid_argument("reject_grace_s must be >= 0");
+  }
+}
+
+const char* ToString(MissionState state) {
+  switch (state) {
+    case MissionState::kIdle:
+      return "idle";
+    case MissionState::kUploading:
+      return "uploading";
+    case MissionState::kRunning:
+      return "running";
+    case MissionState::kReturning:
+      return "returning";
+    case MissionState::kComplete:
+      return "complete";
+    case MissionState::kAborted:
+      return "aborted";
+  }
+  return "unknown";
+}
+
+Server::Server(const ServerConfig& config, const common::LocalFrame& frame)
+    : config_(config),
+      frame_(frame),
+      scheduler_(std::make_unique<radio::MasterScheduler>(config.radio)),
+      registry_(config.link),
+      fusion_(config.fusion) {
+  config_.Validate();
+}
+
+void Server::Record(double t_s, std::string kind, nlohmann::json data) {
+  if (restoring_) return;
+  journal_.push_back(JournalEntry{t_s, std::move(kind), std::move(data)});
+}
+
+std::vector<JournalEntry> Server::TakeJournalEntries() {
+  return std::exchange(journal_, {});
+}
+
+void Server::AddVehicle(int receiver_id, double now_s) {
+  registry_.Register(receiver_id);
+  // Stagger the first telemetry turns so a fleet does not ask all at once.
+  const auto index = static_cast<double>(registry_.size() - 1);
+  scheduler_->AddVehicle(static_cast<std::uint8_t>(receiver_id), config_.telemetry_hz,
+                         radio::FromSeconds(index * 0.05));
+  Record(now_s, "vehicle", {{"id", receiver_id}});
+}
+
+void Server::LoadMission(std::vector<DroneMission> missions, double now_s) {
+  if (mission_) throw std::invalid_argument("a mission is already loaded");
+  nlohmann::json drones = nlohmann::json::array();
+  for (const DroneMission& m : missions) {
+    if (!registry_.Contains(m.vehicle)) {
+      throw std::invalid_argument("mission for vehicle " + std::to_string(m.vehicle) +
+                                  ", which is not registered");
+    }
+    drones.push_back({{"vehicle", m.vehicle},
+                      {"mission_id", m.mission_id},
+                      {"waypoints", WaypointsJson(m.waypoints)}});
+  }
+  mission_.emplace(*scheduler_, missions, config_.mission);
+  missions_ = std::move(missions);
+  Record(now_s, "mission", {{"drones", std::move(drones)}});
+}
+
+bool Server::Handle(const OperatorCommand& command, radio::Nanos now, std::string* why) {
+  const double now_s = Seconds(now);
+  const auto refuse = [&](std::string reason) {
+    if (why != nullptr) *why = std::move(reason);
+    return false;
+  };
+  const nlohmann::json record = {{"command", static_cast<int>(command.kind)},
+                                 {"vehicle", command.vehicle},
+                                 {"lat_deg", command.point.lat_deg},
+                                 {"lon_deg", command.point.lon_deg},
+                                 {"reason", command.reason}};
+  using Kind = OperatorCommand::Kind;
+  switch (command.kind) {
+    case Kind::kStart:
+      if (!mission_) return refuse("no mission is loaded");
+      if (state_ != MissionState::kIdle) return refuse("the mission has already started");
+      mission_->Begin();
+      mission_started_s_ = now_s;
+      state_ = MissionState::kUploading;
+      Record(now_s, "start", record);
+      return true;
+    case Kind::kAbort:
+      SendToAll(radio::CommandType::kAbort);
+      state_ = MissionState::kAborted;
+      Record(now_s, "abort", record);
+      return true;
+    case Kind::kReturnAll:
+      SendToAll(radio::CommandType::kReturnToLaunch);
+      if (state_ != MissionState::kAborted) state_ = MissionState::kReturning;
+      Record(now_s, "return_all", record);
+      return true;
+    case Kind::kInvestigatePoint:
+    case Kind::kRetaskVehicle: {
+      if (!common::IsValidLatLon(command.point)) return refuse("the point is not a valid lat/lon");
+      std::optional<std::uint8_t> vehicle;
+      if (command.vehicle != 0) {
+        if (!registry_.Contains(command.vehicle)) {
+          return refuse("vehicle " + std::to_string(command.vehicle) + " is not registered");
+        }
+        vehicle = command.vehicle;
+      } else if (command.kind == Kind::kRetaskVehicle) {
+        return refuse("re-task needs a vehicle");
+      } else {
+        vehicle = BestPlacedFor(NorthEast(frame_, command.point), 0, now_s);
+        if (!vehicle) return refuse("no searching vehicle with a working link");
+      }
+      Record(now_s, "investigate_order", record);
+      Investigate(*vehicle, command.point, command.radius_m, 0, now_s);
+      return true;
+    }
+  }
+  return refuse("unknown command");
+}
+
+void Server::SendToAll(radio::CommandType type) {
+  radio::Command command;
+  command.type = type;
+  for (const std::uint8_t id : registry_.ids()) scheduler_->SendCommand(id, command);
+}
+
+void Server::Investigate(std::uint8_t vehicle, common::LatLon point, double radius_m,
+                         std::int32_t track_id, double now_s) {
+  radio::Command command;
+  command.type = radio::CommandType::kInvestigate;
+  command.lat_deg = point.lat_deg;
+  command.lon_deg = point.lon_deg;
+  command.radius_m = radius_m > 0.0 ? radius_m : config_.investigate_radius_m;
+  command.duration_s = static_cast<std::uint16_t>(std::lround(config_.investigate_s));
+  scheduler_->SendCommand(vehicle, command);
+  investigations_.push_back(Investigation{vehicle, track_id, now_s, now_s + config_.investigate_s});
+  Record(
+      now_s, "investigation",
+      {{"vehicle", vehicle}, {"track_id", track_id}, {"until_s", now_s + config_.investigate_s}});
+}
+
+std::optional<std::uint8_t> Server::BestPlacedFor(const Eigen::Vector2d& point_ne_m,
+                                                  std::uint8_t reporter, double now_s) const {
+  std::optional<std::uint8_t> best;
+  double best_m = std::numeric_limits<double>::infinity();
+  bool best_is_reporter = true;
+  for (const std::uint8_t id : registry_.ids()) {
+    const VehicleState& vehicle = registry_.state(id);
+    if (!vehicle.telemetry || registry_.LinkAt(id, now_s) != LinkState::kOk) continue;
+    if (vehicle.telemetry->mode != radio::FlightMode::kSearch) continue;
+    if ((vehicle.telemetry->flags & radio::telemetry_flags::kLowBattery) != 0) continue;
+    const bool busy = std::ranges::any_of(investigations_, [&](const Investigation& i) {
+      return i.vehicle == id && i.until_s > now_s;
+    });
+    if (busy) continue;
+    const double distance_m =
+        (NorthEast(frame_, {vehicle.telemetry->lat_deg, vehicle.telemetry->lon_deg}) - point_ne_m)
+            .norm();
+    const bool is_reporter = id == reporter;
+    // Another vehicle than the reporter wins: its view is independent.
+    if ((best_is_reporter && !is_reporter) ||
+        (best_is_reporter == is_reporter && distance_m < best_m)) {
+      best = id;
+      best_m = distance_m;
+      best_is_reporter = is_reporter;
+    }
+  }
+  return best;
+}
+
+std::vector<radio::Burst> Server::Step(radio::Nanos now, std::span<const std::uint8_t> received) {
+  const double now_s = Seconds(now);
+  if (mission_) mission_->Step(now);
+  std::vector<radio::Burst> bursts = scheduler_->Step(now, received);
+  bytes_received_ += received.size();
+  for (const radio::Burst& burst : bursts) bytes_sent_ += burst.bytes.size();
+  for (const radio::SchedulerEvent& event : scheduler_->TakeEvents()) OnEvent(event, now_s);
+  CheckInvestigations(now_s);
+  UpdateState(now_s);
+  return bursts;
+}
+
+radio::Nanos Server::NextWakeup() const {
+  radio::Nanos next = scheduler_->NextWakeup();
+  if (mission_) next = std::min(next, mission_->NextWakeup());
+  for (const Investigation& i : investigations_) {
+    if (i.track_id == 0) continue;
+    const FireTrack* track = fusion_.Find(i.track_id);
+    if (track != nullptr && track->status == FireTrackStatus::kTentative) {
+      next = std::min(next, radio::FromSeconds(i.until_s + config_.reject_grace_s));
+    }
+  }
+  return next;
+}
+
+void Server::OnEvent(const radio::SchedulerEvent& event, double now_s) {
+  if (const auto* telemetry = std::get_if<radio::TelemetryReceived>(&event)) {
+    registry_.OnTelemetry(telemetry->telemetry, now_s);
+    clock_offset_s_[telemetry->vehicle] =
+        now_s - static_cast<double>(telemetry->telemetry.time_ms) / kMillisPerSecond;
+  } else if (const auto* report = std::get_if<radio::FireReportReceived>(&event)) {
+    registry_.OnReply(report->vehicle, now_s);
+    OnFireReport(*report, now_s);
+  } else if (const auto* finished = std::get_if<radio::RequestFinished>(&event)) {
+    if (finished->status == radio::RequestStatus::kCompleted) {
+      registry_.OnReply(finished->vehicle, now_s);
+    }
+  } else if (const auto* silent = std::get_if<radio::VehicleSilent>(&event)) {
+    registry_.OnMissedReply(silent->vehicle);
+  }
+  if (!mission_) return;
+  mission_->OnEvent(event);
+  for (const std::uint8_t id : mission_->vehicles()) {
+    const DronePhase phase = mission_->progress(id).phase;
+    const auto journaled = journaled_phases_.find(id);
+    if (journaled != journaled_phases_.end() && journaled->second == phase) continue;
+    journaled_phases_[id] = phase;
+    Record(now_s, "phase", {{"vehicle", id}, {"phase", static_cast<int>(phase)}});
+  }
+}
+
+void Server::OnFireReport(const radio::FireReportReceived& received, double now_s) {
+  // The report's time is the vehicle's clock; telemetry gave its offset to ours.
+  const auto offset = clock_offset_s_.find(received.vehicle);
+  const double detection_s =
+      offset == clock_offset_s_.end()
+          ? now_s
+          : std::min(now_s, static_cast<double>(received.report.time_ms) / kMillisPerSecond +
+                                offset->second);
+  const FireObservation observation = ObservationFromReport(received.report, frame_, detection_s);
+  report_receipts_.emplace(std::make_pair(received.vehicle, received.report.report_id), now_s);
+  const FireReportResult result = fusion_.Add(observation);
+  if (result.outcome == FireReportOutcome::kDuplicate ||
+      result.outcome == FireReportOutcome::kInvalid) {
+    return;
+  }
+  Record(now_s, "report", ObservationJson(observation));
+  AfterFusion(observation, result, now_s);
+}
+
+void Server::AfterFusion(const FireObservation& observation, const FireReportResult& result,
+                         double now_s) {
+  if (result.outcome == FireReportOutcome::kConfirmed) {
+    // The investigator's job is done: back to its lanes at once.
+    for (Investigation& i : investigations_) {
+      if (i.track_id != result.track_id || i.until_s <= now_s) continue;
+      radio::Command resume;
+      resume.type = radio::CommandType::kResume;
+      scheduler_->SendCommand(i.vehicle, resume);
+      i.until_s = now_s;
+    }
+    return;
+  }
+  if (result.outcome != FireReportOutcome::kNewTrack || !config_.auto_investigate) return;
+  if (state_ != MissionState::kRunning && state_ != MissionState::kUploading) return;
+  const FireTrack* track = fusion_.Find(result.track_id);
+  if (track == nullptr) return;
+  const std::optional<std::uint8_t> vehicle =
+      BestPlacedFor(track->position_ne_m, observation.vehicle_id, now_s);
+  if (!vehicle) return;
+  const common::LatLon point =
+      frame_.ToGeodetic({track->position_ne_m.y(), track->position_ne_m.x()});
+  Investigate(*vehicle, point, 0.0, result.track_id, now_s);
+}
+
+void Server::CheckInvestigations(double now_s) {
+  for (const Investigation& i : investigations_) {
+    if (i.track_id == 0 || now_s < i.until_s + config_.reject_grace_s) continue;
+    const FireTrack* track = fusion_.Find(i.track_id);
+    if (track == nullptr || track->status != FireTrackStatus::kTentative) continue;
+    const bool seen_again = std::ranges::any_of(track->reports, [&](const FireObservation& o) {
+      return o.vehicle_id == i.vehicle && o.detection_time_s >= i.started_s;
+    });
+    if (seen_again) continue;
+    fusion_.Reject(i.track_id);
+    Record(now_s, "reject", {{"track_id", i.track_id}, {"by_vehicle", i.vehicle}});
+  }
+}
+
+void Server::UpdateState(double now_s) {
+  if (!mission_ || state_ == MissionState::kIdle || state_ == MissionState::kAborted) return;
+  const std::vector<std::uint8_t> ids = mission_->vehicles();
+  const auto phase = [&](std::uint8_t id) { return mission_->progress(id).phase; };
+  const bool all_over = std::ranges::all_of(ids, [&](std::uint8_t id) {
+    return phase(id) == DronePhase::kDone || phase(id) == DronePhase::kFailed;
+  });
+  MissionState next = state_;
+  if (all_over) {
+    next = MissionState::kComplete;
+  } else if (state_ == MissionState::kUploading && mission_->AllStarted()) {
+    next = MissionState::kRunning;
+  }
+  if (next != state_) {
+    state_ = next;
+    Record(now_s, "state", {{"state", static_cast<int>(state_)}});
+  }
+}
+
+Server Server::Restore(const ServerConfig& config, const common::LocalFrame& frame,
+                       const std::vector<JournalEntry>& entries) {
+  Server server(config, frame);
+  server.restoring_ = true;
+  for (std::size_t index = 0; index < entries.size(); ++index) {
+    const JournalEntry& entry = entries[index];
+    const nlohmann::json& data = entry.data;
+    try {
+      if (entry.kind == "vehicle") {
+        server.AddVehicle(data.at("id").get<int>(), entry.t_s);
+      } else if (entry.kind == "mission") {
+        std::vector<DroneMission> missions;
+        for (const nlohmann::json& drone : data.at("drones")) {
+          DroneMission m;
+          m.vehicle = drone.at("vehicle").get<std::uint8_t>();
+          m.mission_id = drone.at("mission_id").get<std::uint16_t>();
+          m.waypoints = WaypointsFrom(drone.at("waypoints"));
+          missions.push_back(std::move(m));
+        }
+        server.LoadMission(std::move(missions), entry.t_s);
+      } else if (entry.kind == "start") {
+        if (!server.mission_) throw std::runtime_error("start before any mission");
+        server.state_ = MissionState::kUploading;
+        server.mission_started_s_ = entry.t_s;
+      } else if (entry.kind == "phase") {
+        if (!server.mission_) throw std::runtime_error("phase before any mission");
+        const auto vehicle = data.at("vehicle").get<std::uint8_t>();
+        const auto phase = static_cast<DronePhase>(data.at("phase").get<int>());
+        server.mission_->RestorePhase(vehicle, phase);
+        server.journaled_phases_[vehicle] = phase;
+      } else if (entry.kind == "state") {
+        server.state_ = static_cast<MissionState>(data.at("state").get<int>());
+      } else if (entry.kind == "abort") {
+        server.state_ = MissionState::kAborted;
+      } else if (entry.kind == "return_all") {
+        if (server.state_ != MissionState::kAborted) server.state_ = MissionState::kReturning;
+      } else if (entry.kind == "report") {
+        const FireObservation observation = ObservationFrom(data);
+        server.report_receipts_.emplace(
+            std::make_pair(observation.vehicle_id, observation.report_id), entry.t_s);
+        server.fusion_.Add(observation);
+      } else if (entry.kind == "reject") {
+        server.fusion_.Reject(data.at("track_id").get<std::int32_t>());
+      } else if (entry.kind == "investigation") {
+        server.investigations_.push_back(Investigation{
+            data.at("vehicle").get<std::uint8_t>(), data.at("track_id").get<std::int32_t>(),
+            entry.t_s, data.at("until_s").get<double>()});
+      } else if (entry.kind == "investigate_order") {
+        // The order itself is carried out by its "investigation" entry.
+      } else {
+        throw std::runtime_error("unknown kind");
+      }
+    } catch (const std::exception& e) {
+      throw std::runtime_error("journal entry " + std::to_string(index) + " (" + entry.kind +
+                               "): " + e.what());
+    }
+  }
+  // A mission still uploading when the server stopped starts its upload again:
+  // chunks are idempotent on the vehicle.
+  if (server.mission_ && server.state_ == MissionState::kUploading) server.mission_->Begin();
+  server.restoring_ = false;
+  return server;
+}
+
+}  // namespace fireswarm::server

@@ -1,0 +1,142 @@
+// Radio-level vehicles for the server's tests: each is a VehicleEndpoint (the
+// vehicle's real radio side) with a small handler that stores missions as the
+// APOne mission store does, logs the commands it gets and can be given telemetry
+// and fire reports, all on one simulated shared channel. No agents/: the server
+// knows vehicles only through frames.
+#pragma once
+
+#include <algorithm>
+#include <memory>
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "fireswarm/radio/channel.hpp"
+#include "fireswarm/radio/link.hpp"
+#include "fireswarm/radio/master_scheduler.hpp"
+#include "fireswarm/radio/vehicle_endpoint.hpp"
+
+namespace fireswarm::server::testing {
+
+using radio::Nanos;
+
+// The radio side of a vehicle: stores chunks as the APOne mission store does
+// (complete when every chunk is in) and refuses the start `refusals` times, as a
+// vehicle without a GPS fix does.
+class FakeVehicle final : public radio::VehicleRequestHandler {
+ public:
+  FakeVehicle(std::uint8_t id, radio::LinkMode mode, int refusals)
+      : id_(id), endpoint_(Config(id, mode), *this), refusals_left_(refusals) {}
+  std::uint8_t id() const { return id_; }
+
+  radio::CommandResult OnCommand(const radio::Command& command) override {
+    commands_.push_back(command);
+    if (command.type != radio::CommandType::kStartMission) return radio::CommandResult::kAccepted;
+    if (!complete_ || command.mission_id != mission_id_) return radio::CommandResult::kRejected;
+    if (refusals_left_ > 0) {
+      --refusals_left_;
+      return radio::CommandResult::kRejected;
+    }
+    ++starts_accepted_;
+    return radio::CommandResult::kAccepted;
+  }
+  radio::MissionAckStatus OnMissionChunk(const radio::MissionChunk& chunk) override {
+    if (chunk.chunk_index >= chunk.chunk_count) return radio::MissionAckStatus::kRejected;
+    mission_id_ = chunk.mission_id;
+    waypoints_.resize(chunk.total_waypoints);
+    for (std::size_t i = 0; i < chunk.waypoint_count; ++i) {
+      waypoints_.at(chunk.first_waypoint + i) = chunk.waypoints[i];
+    }
+    chunks_.insert(chunk.chunk_index);
+    complete_ = chunks_.size() == chunk.chunk_count;
+    return complete_ ? radio::MissionAckStatus::kComplete : radio::MissionAckStatus::kAccepted;
+  }
+  radio::ParamValue OnParamRead(const radio::ParamRead&) override { return {}; }
+  radio::ParamValue OnParamWrite(const radio::ParamWrite&) override { return {}; }
+
+  radio::VehicleEndpoint& endpoint() { return endpoint_; }
+  const std::vector<radio::Waypoint>& waypoints() const { return waypoints_; }
+  bool complete() const { return complete_; }
+  int starts_accepted() const { return starts_accepted_; }
+  const std::vector<radio::Command>& commands() const { return commands_; }
+
+ private:
+  static radio::VehicleEndpointConfig Config(std::uint8_t id, radio::LinkMode mode) {
+    radio::VehicleEndpointConfig config;
+    config.id = id;
+    config.mode = mode;
+    return config;
+  }
+  std::uint8_t id_;
+  radio::VehicleEndpoint endpoint_;
+  int refusals_left_;
+  std::uint16_t mission_id_ = 0;
+  std::set<std::uint8_t> chunks_;
+  std::vector<radio::Waypoint> waypoints_;
+  bool complete_ = false;
+  int starts_accepted_ = 0;
+  std::vector<radio::Command> commands_;
+};
+
+// Fake vehicles on one shared channel with a server end, run event by event (no
+// wall clock). The server end is anything with Step(now, bytes) -> bursts and
+// NextWakeup().
+struct Air {
+  explicit Air(double loss, radio::LinkMode link_mode = radio::LinkMode::kSlots)
+      : mode(link_mode), channel(Channel(loss), 7), server_link(channel, channel.AddRadio()) {}
+  static radio::ChannelConfig Channel(double loss) {
+    radio::ChannelConfig channel_config;
+    channel_config.loss = loss;
+    return channel_config;
+  }
+  FakeVehicle& Add(std::uint8_t id, int refusals = 0) {
+    vehicles.push_back(std::make_unique<FakeVehicle>(id, mode, refusals));
+    links.push_back(std::make_unique<radio::SimLink>(channel, channel.AddRadio()));
+    return *vehicles.back();
+  }
+  FakeVehicle& vehicle(std::uint8_t id) {
+    for (auto& v : vehicles) {
+      if (v->id() == id) return *v;
+    }
+    throw std::out_of_range("no fake vehicle " + std::to_string(id));
+  }
+  // Runs until `done()` holds or the next event would pass `limit`.
+  template <typename ServerEnd, typename Done>
+  Nanos Run(ServerEnd& server, Nanos limit, Done&& done) {
+    while (!done()) {
+      const Nanos t =
+          std::max(channel.now(),
+                   std::min(server.NextWakeup(), channel.NextEventTime().value_or(Nanos::max())));
+      if (t > limit) break;
+      channel.AdvanceTo(t);
+      std::vector<std::uint8_t> bytes;
+      server_link.Receive(t, bytes);
+      for (const radio::Burst& burst : server.Step(t, bytes)) {
+        server_link.Transmit(t, burst.start, burst.bytes);
+      }
+      for (std::size_t i = 0; i < vehicles.size(); ++i) {
+        bytes.clear();
+        links[i]->Receive(t, bytes);
+        if (bytes.empty()) continue;
+        for (const radio::Burst& burst : vehicles[i]->endpoint().OnReceive(t, bytes)) {
+          links[i]->Transmit(t, burst.start, burst.bytes);
+        }
+      }
+    }
+    return channel.now();
+  }
+  template <typename ServerEnd>
+  void RunUntil(ServerEnd& server, Nanos end) {
+    Run(server, end, [] { return false; });
+    if (channel.now() < end) channel.AdvanceTo(end);
+  }
+
+  radio::LinkMode mode;
+  radio::SharedChannel channel;
+  radio::SimLink server_link;
+  std::vector<std::unique_ptr<FakeVehicle>> vehicles;
+  std::vector<std::unique_ptr<radio::SimLink>> links;
+};
+
+}  // namespace fireswarm::server::testing

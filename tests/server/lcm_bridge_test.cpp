@@ -1,0 +1,279 @@
+// The LCM bridge through real LCM: conversions, the event log (read back with
+// lcm::LogFile and replayed by the stock lcm-logplayer), CSV files, and operator
+// commands and publications over udpm:// on loopback (skipped, saying why, on a
+// machine without a multicast route). No sleeps: waiting is handleTimeout().
+#include "fireswarm/server/lcm_bridge.hpp"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <lcm/lcm-cpp.hpp>
+#include <map>
+#include <random>
+#include <string>
+
+#include "server/fake_fleet.hpp"
+
+namespace fireswarm::server {
+namespace {
+
+using radio::Nanos;
+using testing::Air;
+
+const common::LocalFrame kFrame{common::LatLon{46.0, -74.5}};
+constexpr Nanos kSecond = std::chrono::seconds(1);
+
+std::filesystem::path TempDir(const std::string& name) {
+  const std::filesystem::path dir = std::filesystem::path(::testing::TempDir()) /
+                                    ("lcm_bridge_" + name + "_" + std::to_string(getpid()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+// Two vehicles heard by a server, one of them with a fire track.
+struct HeardFleet {
+  HeardFleet() : air(0.0), server(ServerConfig{}, kFrame) {
+    for (std::uint8_t id = 1; id <= 2; ++id) {
+      air.Add(id);
+      server.AddVehicle(id);
+      radio::Telemetry t;
+      const common::LatLon where = kFrame.ToGeodetic({100.0 * id, 50.0});
+      t.lat_deg = where.lat_deg;
+      t.lon_deg = where.lon_deg;
+      t.altitude_m = 60.0;
+      t.heading_deg = 90.0;
+      t.mode = radio::FlightMode::kSearch;
+      t.battery_percent = 77;
+      t.time_ms = 5'000;
+      air.vehicle(id).endpoint().SetTelemetry(t);
+    }
+    radio::FireReport report;
+    const common::LatLon fire = kFrame.ToGeodetic({120.0, 80.0});
+    report.lat_deg = fire.lat_deg;
+    report.lon_deg = fire.lon_deg;
+    report.sigma_north_m = 2.0;
+    report.sigma_east_m = 3.0;
+    report.observer_lat_deg = fire.lat_deg;
+    report.observer_lon_deg = fire.lon_deg;
+    report.confidence = 0.8;
+    report.time_ms = 5'000;  // the vehicle's clock, as in its telemetry
+    air.vehicle(1).endpoint().QueueFireReport(report);
+    air.RunUntil(server, 5 * kSecond);
+  }
+  Air air;
+  Server server;
+};
+
+TEST(LcmMessages, VehicleStateCarriesTheTelemetryAndTheLink) {
+  HeardFleet fleet;
+  const double now_s = 5.0;
+  const vehicle_state_t m = ToVehicleState(fleet.server, 2, now_s, 123);
+  EXPECT_EQ(m.utime, 123);
+  EXPECT_EQ(m.receiver_id, 2);
+  const common::EastNorth where = kFrame.ToLocal({m.lat_deg, m.lon_deg});
+  EXPECT_NEAR(where.east_m, 200.0, 0.05);
+  EXPECT_NEAR(where.north_m, 50.0, 0.05);
+  EXPECT_DOUBLE_EQ(m.battery_percent, 77.0);
+  EXPECT_EQ(m.flight_mode, vehicle_state_t::MODE_SEARCH);
+  EXPECT_EQ(m.link_state, vehicle_state_t::LINK_OK);
+  EXPECT_GE(m.telemetry_age_s, 0.0);
+  EXPECT_LT(m.telemetry_age_s, 2.0);
+}
+
+TEST(LcmMessages, TrackListAndMissionStatusCountTheTracks) {
+  HeardFleet fleet;
+  const fire_track_list_t list = ToFireTrackList(fleet.server, 9, 1'000'000);
+  ASSERT_EQ(list.track_count, 1);
+  const fire_track_t& track = list.tracks[0];
+  EXPECT_EQ(track.status, fire_track_t::STATUS_TENTATIVE);
+  const common::EastNorth where = kFrame.ToLocal({track.lat_deg, track.lon_deg});
+  EXPECT_NEAR(where.east_m, 120.0, 0.05);
+  EXPECT_NEAR(where.north_m, 80.0, 0.05);
+  EXPECT_EQ(track.vehicle_count, 1);
+  EXPECT_EQ(track.vehicle_ids.at(0), 1);
+  EXPECT_GT(track.covariance_m2[1][1], track.covariance_m2[0][0]) << "east sigma 3 m > north 2 m";
+  EXPECT_GE(track.first_seen_utime, 1'000'000);
+
+  const mission_status_t status = ToMissionStatus(fleet.server, 5.0, 9);
+  EXPECT_EQ(status.fires_tentative, 1);
+  EXPECT_EQ(status.fires_confirmed, 0);
+  EXPECT_EQ(status.vehicles_active, 2);
+  EXPECT_EQ(status.state, mission_status_t::STATE_IDLE);
+}
+
+TEST(LcmMessages, OperatorCommandsOutOfRangeAreRefusedWithAReason) {
+  operator_command_t m{};
+  m.command = operator_command_t::RETASK_VEHICLE;
+  m.target_vehicle = 3;
+  m.lat_deg = 46.0;
+  m.lon_deg = -74.5;
+  m.radius_m = 40.0;
+  std::string why;
+  const std::optional<OperatorCommand> command = FromLcm(m, &why);
+  ASSERT_TRUE(command.has_value()) << why;
+  EXPECT_EQ(command->kind, OperatorCommand::Kind::kRetaskVehicle);
+  EXPECT_EQ(command->vehicle, 3);
+  m.command = 42;
+  EXPECT_FALSE(FromLcm(m, &why).has_value());
+  EXPECT_EQ(why, "unknown command 42");
+  m.command = operator_command_t::START;
+  m.target_vehicle = 300;
+  EXPECT_FALSE(FromLcm(m, &why).has_value());
+  EXPECT_NE(why.find("target_vehicle 300"), std::string::npos) << why;
+}
+
+// Publishes at 10 Hz steps for 10 s into a log and CSV files.
+void PublishTenSeconds(const Server& server, LcmBridge& bridge) {
+  for (int step = 0; step < 100; ++step) {
+    const double t = 0.1 * step;
+    bridge.Publish(server, t, std::llround(t * 1e6), 0);
+  }
+}
+
+TEST(LcmBridge, WritesALogAndCsvFilesAtTheConfiguredRates) {
+  HeardFleet fleet;
+  const std::filesystem::path dir = TempDir("log");
+  LcmBridgeConfig config;
+  config.log_path = dir / "run.lcmlog";
+  config.csv_dir = dir / "csv";
+  config.rates.vehicle_state_hz = 2.0;
+  config.rates.fire_tracks_hz = 1.0;
+  config.rates.mission_status_hz = 0.0;  // off
+  config.rates.radio_stats_hz = 0.5;
+  {
+    LcmBridge bridge(config);
+    PublishTenSeconds(fleet.server, bridge);
+  }
+  std::map<std::string, int> events;
+  lcm::LogFile log(config.log_path->string(), "r");
+  ASSERT_TRUE(log.good());
+  std::int64_t last_utime = -1;
+  while (const lcm::LogEvent* event = log.readNextEvent()) {
+    ++events[event->channel];
+    EXPECT_GE(event->timestamp, last_utime);
+    last_utime = event->timestamp;
+    if (event->channel == kVehicleStateChannel) {
+      vehicle_state_t m;
+      ASSERT_EQ(m.decode(event->data, 0, event->datalen), event->datalen);
+      EXPECT_TRUE(m.receiver_id == 1 || m.receiver_id == 2);
+    }
+  }
+  EXPECT_EQ(events[kVehicleStateChannel], 2 * 20);  // 2 vehicles at 2 Hz for 10 s
+  EXPECT_EQ(events[kFireTracksChannel], 10);
+  EXPECT_EQ(events[kRadioStatsChannel], 5);
+  EXPECT_EQ(events.count(kMissionStatusChannel), 0u);
+
+  std::ifstream csv(*config.csv_dir / "fireswarm_vehicle_state.csv");
+  ASSERT_TRUE(csv.good());
+  std::string line;
+  std::getline(csv, line);
+  EXPECT_EQ(line.rfind("utime,receiver_id,", 0), 0u) << line;
+  int rows = 0;
+  while (std::getline(csv, line)) ++rows;
+  EXPECT_EQ(rows, 40);
+  EXPECT_FALSE(std::filesystem::exists(*config.csv_dir / "fireswarm_mission_status.csv"));
+}
+
+TEST(LcmBridge, RefusesAnUnwritableLogNamingIt) {
+  LcmBridgeConfig config;
+  config.log_path = "/nonexistent-dir/run.lcmlog";
+  try {
+    LcmBridge bridge(config);
+    FAIL() << "no error for an unwritable log";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent-dir/run.lcmlog"), std::string::npos);
+  }
+  config.log_path.reset();
+  config.rates.fire_tracks_hz = -1.0;
+  EXPECT_THROW(LcmBridge{config}, std::invalid_argument);
+}
+
+// ---- udpm:// on loopback ---------------------------------------------------
+
+constexpr const char* kNoMulticastRoute =
+    "udpm:// needs a multicast route and this machine has none; as root run "
+    "scripts/install-deps.sh (it adds 224.0.0.0/4 on lo)";
+
+std::string LoopbackUrl() {
+  std::random_device random;
+  return "udpm://239.255.76.67:" + std::to_string(20'000 + random() % 40'000U) + "?ttl=0";
+}
+
+template <typename Done>
+bool HandleUntil(lcm::LCM& lcm, Done&& done) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(3);
+  while (!done()) {
+    if (std::chrono::steady_clock::now() > deadline) return false;
+    lcm.handleTimeout(100);
+  }
+  return true;
+}
+
+struct Inbox {
+  void OnState(const lcm::ReceiveBuffer*, const std::string&, const vehicle_state_t*) { ++states; }
+  int states = 0;
+};
+
+TEST(LcmBridge, PublishesAndTakesOperatorCommandsOverUdpm) {
+  HeardFleet fleet;
+  LcmBridgeConfig config;
+  config.url = LoopbackUrl();
+  lcm::LCM operator_console(config.url);
+  if (!operator_console.good()) GTEST_SKIP() << kNoMulticastRoute;
+  std::unique_ptr<LcmBridge> bridge;
+  try {
+    bridge = std::make_unique<LcmBridge>(config);
+  } catch (const std::runtime_error&) {
+    GTEST_SKIP() << kNoMulticastRoute;
+  }
+  Inbox inbox;
+  operator_console.subscribe(kVehicleStateChannel, &Inbox::OnState, &inbox);
+  bridge->Publish(fleet.server, 0.0, 0, 0);
+  ASSERT_TRUE(HandleUntil(operator_console, [&] { return inbox.states >= 2; }))
+      << "vehicle states did not arrive within 3 s";
+
+  operator_command_t m{};
+  m.command = operator_command_t::RETURN_ALL;
+  m.reason = "smoke on the ridge";
+  if (operator_console.publish(kOperatorCommandChannel, &m) != 0) GTEST_SKIP() << kNoMulticastRoute;
+  std::vector<OperatorCommand> taken;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(3);
+  while (taken.empty() && std::chrono::steady_clock::now() < deadline) {
+    for (OperatorCommand& c : bridge->TakeCommands()) taken.push_back(c);
+  }
+  ASSERT_EQ(taken.size(), 1u);
+  EXPECT_EQ(taken[0].kind, OperatorCommand::Kind::kReturnAll);
+  EXPECT_EQ(taken[0].reason, "smoke on the ridge");
+}
+
+TEST(LcmBridge, TheStockLogPlayerReplaysTheLog) {
+  HeardFleet fleet;
+  const std::filesystem::path dir = TempDir("replay");
+  LcmBridgeConfig config;
+  config.log_path = dir / "run.lcmlog";
+  {
+    LcmBridge bridge(config);
+    PublishTenSeconds(fleet.server, bridge);  // 2 vehicles at 2 Hz: 40 states
+  }
+  const std::string url = LoopbackUrl();
+  lcm::LCM listener(url);
+  if (!listener.good()) GTEST_SKIP() << kNoMulticastRoute;
+  Inbox inbox;
+  // LCM keeps 30 unhandled messages per subscription by default; the replay
+  // arrives while std::system() blocks.
+  listener.subscribe(kVehicleStateChannel, &Inbox::OnState, &inbox)->setQueueCapacity(1'000);
+  // 10 s of log at 100x: about 0.1 s. The datagrams wait in the socket buffer.
+  const std::string command = "lcm-logplayer --speed=100 --lcm-url='" + url + "' '" +
+                              config.log_path->string() + "' >/dev/null 2>&1";
+  ASSERT_EQ(std::system(command.c_str()), 0) << command;
+  ASSERT_TRUE(HandleUntil(listener, [&] { return inbox.states >= 40; }))
+      << "only " << inbox.states << " of 40 vehicle states replayed";
+}
+
+}  // namespace
+}  // namespace fireswarm::server

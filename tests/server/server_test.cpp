@@ -1,0 +1,209 @@
+#include "fireswarm/server/server.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <vector>
+
+#include "server/fake_fleet.hpp"
+
+namespace fireswarm::server {
+namespace {
+
+using radio::Nanos;
+using testing::Air;
+using testing::FakeVehicle;
+
+const common::LocalFrame kFrame{common::LatLon{46.0, -74.5}};
+constexpr Nanos kSecond = std::chrono::seconds(1);
+
+// A searching vehicle at `east_m, north_m` of the frame's origin.
+radio::Telemetry Searching(double east_m, double north_m, std::uint32_t time_ms) {
+  const common::LatLon where = kFrame.ToGeodetic({east_m, north_m});
+  radio::Telemetry telemetry;
+  telemetry.time_ms = time_ms;
+  telemetry.lat_deg = where.lat_deg;
+  telemetry.lon_deg = where.lon_deg;
+  telemetry.altitude_m = 60.0;
+  telemetry.mode = radio::FlightMode::kSearch;
+  telemetry.flags = radio::telemetry_flags::kGpsFix | radio::telemetry_flags::kMissionValid;
+  telemetry.battery_percent = 90;
+  telemetry.mission_id = 1;
+  return telemetry;
+}
+
+radio::FireReport ReportAt(double east_m, double north_m, double observer_east_m,
+                           std::uint32_t time_ms) {
+  const common::LatLon fire = kFrame.ToGeodetic({east_m, north_m});
+  const common::LatLon observer = kFrame.ToGeodetic({observer_east_m, north_m});
+  radio::FireReport report;
+  report.time_ms = time_ms;
+  report.lat_deg = fire.lat_deg;
+  report.lon_deg = fire.lon_deg;
+  report.sigma_north_m = 3.0;
+  report.sigma_east_m = 3.0;
+  report.observer_lat_deg = observer.lat_deg;
+  report.observer_lon_deg = observer.lon_deg;
+  report.observer_altitude_m = 60.0;
+  report.pixel_count = 4;
+  report.peak_temperature_c = 400.0;
+  report.confidence = 0.9;
+  return report;
+}
+
+std::vector<DroneMission> Missions(const std::vector<std::uint8_t>& ids) {
+  std::vector<DroneMission> missions;
+  for (const std::uint8_t id : ids) {
+    DroneMission m;
+    m.vehicle = id;
+    m.mission_id = 1;
+    for (int i = 0; i < 3; ++i) {
+      radio::Waypoint w;
+      const common::LatLon p = kFrame.ToGeodetic({100.0 * i, 50.0 * id});
+      w.lat_deg = p.lat_deg;
+      w.lon_deg = p.lon_deg;
+      w.altitude_m = 60.0;
+      w.speed_mps = 10.0;
+      m.waypoints.push_back(w);
+    }
+    missions.push_back(m);
+  }
+  return missions;
+}
+
+const radio::Command* LastOf(const FakeVehicle& vehicle, radio::CommandType type) {
+  const auto& commands = vehicle.commands();
+  const auto found = std::find_if(commands.rbegin(), commands.rend(),
+                                  [&](const radio::Command& c) { return c.type == type; });
+  return found == commands.rend() ? nullptr : &*found;
+}
+
+// Three vehicles flying a started mission: 1 at the origin, 2 at 300 m east, 3 at
+// 2 km east.
+struct Fleet {
+  Fleet() : air(0.0), server(ServerConfig{}, kFrame) {
+    for (std::uint8_t id = 1; id <= 3; ++id) {
+      air.Add(id);
+      server.AddVehicle(id);
+    }
+    server.LoadMission(Missions({1, 2, 3}));
+    air.vehicle(1).endpoint().SetTelemetry(Searching(0, 0, 1'000));
+    air.vehicle(2).endpoint().SetTelemetry(Searching(300, 0, 1'000));
+    air.vehicle(3).endpoint().SetTelemetry(Searching(2'000, 0, 1'000));
+    EXPECT_TRUE(server.Handle({OperatorCommand::Kind::kStart, 0, {}, 0.0, "test"}, Nanos{0}));
+    air.Run(server, 60 * kSecond, [&] { return server.state() == MissionState::kRunning; });
+  }
+  void RunFor(Nanos duration) { air.RunUntil(server, air.channel.now() + duration); }
+  Air air;
+  Server server;
+};
+
+TEST(Server, UploadsStartsAndRunsTheMission) {
+  Fleet fleet;
+  EXPECT_EQ(fleet.server.state(), MissionState::kRunning);
+  for (std::uint8_t id = 1; id <= 3; ++id) {
+    EXPECT_EQ(fleet.server.mission()->progress(id).phase, DronePhase::kFlying);
+    EXPECT_EQ(fleet.air.vehicle(id).starts_accepted(), 1);
+  }
+  fleet.RunFor(5 * kSecond);
+  EXPECT_EQ(fleet.server.registry().LinkAt(2, radio::ToSeconds(fleet.air.channel.now())),
+            LinkState::kOk);
+}
+
+TEST(Server, SendsTheNearestOtherVehicleToANewFireAndResumesItOnConfirmation) {
+  Fleet fleet;
+  // Vehicle 1 sees a fire 150 m east of the origin; 2 is nearer than 3.
+  fleet.air.vehicle(1).endpoint().QueueFireReport(ReportAt(150, 0, 0, 2'000));
+  fleet.RunFor(5 * kSecond);
+  ASSERT_EQ(fleet.server.fusion().tracks().size(), 1u);
+  const FireTrack& track = fleet.server.fusion().tracks()[0];
+  EXPECT_EQ(track.status, FireTrackStatus::kTentative);
+  const radio::Command* order = LastOf(fleet.air.vehicle(2), radio::CommandType::kInvestigate);
+  ASSERT_NE(order, nullptr) << "vehicle 2 was not sent to investigate";
+  EXPECT_EQ(LastOf(fleet.air.vehicle(3), radio::CommandType::kInvestigate), nullptr);
+  EXPECT_EQ(LastOf(fleet.air.vehicle(1), radio::CommandType::kInvestigate), nullptr);
+  const common::EastNorth ordered = kFrame.ToLocal({order->lat_deg, order->lon_deg});
+  EXPECT_NEAR(ordered.east_m, 150.0, 0.5);
+  EXPECT_NEAR(ordered.north_m, 0.0, 0.5);
+  EXPECT_EQ(order->duration_s, 60);
+
+  // Vehicle 2 sees it too: confirmed by two vehicles, and 2 goes back to its lanes.
+  fleet.air.vehicle(2).endpoint().QueueFireReport(ReportAt(152, 0, 300, 9'000));
+  fleet.RunFor(5 * kSecond);
+  EXPECT_EQ(fleet.server.fusion().tracks()[0].status, FireTrackStatus::kConfirmed);
+  EXPECT_NE(LastOf(fleet.air.vehicle(2), radio::CommandType::kResume), nullptr);
+}
+
+TEST(Server, RejectsATrackTheInvestigatorDidNotSeeAgain) {
+  Fleet fleet;
+  fleet.air.vehicle(3).endpoint().QueueFireReport(ReportAt(1'900, 0, 2'000, 2'000));
+  fleet.RunFor(5 * kSecond);
+  ASSERT_EQ(fleet.server.fusion().tracks().size(), 1u);
+  ASSERT_NE(LastOf(fleet.air.vehicle(2), radio::CommandType::kInvestigate), nullptr);
+  // Nothing more is reported: after the loiter and the grace the track is rejected.
+  fleet.RunFor(50 * kSecond);
+  EXPECT_EQ(fleet.server.fusion().tracks()[0].status, FireTrackStatus::kTentative);
+  fleet.RunFor(30 * kSecond);
+  EXPECT_EQ(fleet.server.fusion().tracks()[0].status, FireTrackStatus::kRejected);
+}
+
+TEST(Server, RestoredFromItsJournalKeepsTracksAndPhasesAndUploadsNothingAgain) {
+  Fleet fleet;
+  fleet.air.vehicle(1).endpoint().QueueFireReport(ReportAt(150, 0, 0, 2'000));
+  fleet.air.vehicle(3).endpoint().QueueFireReport(ReportAt(1'800, 40, 2'000, 2'500));
+  fleet.RunFor(10 * kSecond);
+  std::vector<JournalEntry> journal = fleet.server.TakeJournalEntries();
+  ASSERT_FALSE(journal.empty());
+
+  const Server restored = Server::Restore(ServerConfig{}, kFrame, journal);
+  EXPECT_EQ(restored.state(), fleet.server.state());
+  EXPECT_EQ(restored.fusion().tracks(), fleet.server.fusion().tracks());
+  EXPECT_EQ(restored.fusion().next_track_id(), fleet.server.fusion().next_track_id());
+  EXPECT_EQ(restored.investigations().size(), fleet.server.investigations().size());
+  for (std::uint8_t id = 1; id <= 3; ++id) {
+    EXPECT_EQ(restored.mission()->progress(id).phase, DronePhase::kFlying);
+  }
+  EXPECT_EQ(restored.scheduler().stats().requests_sent, 0u);
+  EXPECT_EQ(restored.registry().ids(), fleet.server.registry().ids());
+}
+
+TEST(Server, RestoreNamesTheBadEntry) {
+  std::vector<JournalEntry> journal{{0.0, "vehicle", {{"id", 1}}},
+                                    {1.0, "report", {{"vehicle", 1}}}};
+  try {
+    (void)Server::Restore(ServerConfig{}, kFrame, journal);
+    FAIL() << "a report without its fields was accepted";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("journal entry 1 (report)"), std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(Server, OperatorCommandsAreCarriedOutOrRefusedWithAReason) {
+  Air air(0.0);
+  Server server(ServerConfig{}, kFrame);
+  air.Add(1);
+  server.AddVehicle(1);
+  std::string why;
+  EXPECT_FALSE(server.Handle({OperatorCommand::Kind::kStart, 0, {}, 0.0, ""}, Nanos{0}, &why));
+  EXPECT_EQ(why, "no mission is loaded");
+  EXPECT_FALSE(server.Handle({OperatorCommand::Kind::kRetaskVehicle, 9, {46.0, -74.5}, 0.0, ""},
+                             Nanos{0}, &why));
+  EXPECT_EQ(why, "vehicle 9 is not registered");
+  EXPECT_FALSE(server.Handle({OperatorCommand::Kind::kRetaskVehicle, 1, {91.0, -74.5}, 0.0, ""},
+                             Nanos{0}, &why));
+  EXPECT_THROW(server.AddVehicle(1), std::invalid_argument);
+
+  EXPECT_TRUE(server.Handle({OperatorCommand::Kind::kRetaskVehicle, 1, {46.001, -74.5}, 80.0, ""},
+                            Nanos{0}, &why));
+  EXPECT_TRUE(server.Handle({OperatorCommand::Kind::kReturnAll, 0, {}, 0.0, ""}, Nanos{0}));
+  air.RunUntil(server, 5 * kSecond);
+  const radio::Command* retask = LastOf(air.vehicle(1), radio::CommandType::kInvestigate);
+  ASSERT_NE(retask, nullptr);
+  EXPECT_NEAR(retask->lat_deg, 46.001, 1e-7);
+  EXPECT_DOUBLE_EQ(retask->radius_m, 80.0);
+  EXPECT_NE(LastOf(air.vehicle(1), radio::CommandType::kReturnToLaunch), nullptr);
+}
+
+}  // namespace
+}  // namespace fireswarm::server
