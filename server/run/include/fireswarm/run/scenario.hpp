@@ -1,0 +1,189 @@
+// The scenario file of `fireswarm run` (YAML): the area, the fleet, the radio, the
+// fires and distractors, the wind, the faults and the expectations, read into one
+// plain struct with every field typed and defaulted. docs/scenario.md is the
+// reference for every key, its unit, default and valid range.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <limits>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "fireswarm/common/camera_model.hpp"
+#include "fireswarm/common/local_frame.hpp"
+#include "fireswarm/planner/plan.hpp"
+#include "fireswarm/radio/discipline.hpp"
+#include "fireswarm/radio/frame.hpp"
+
+namespace fireswarm::run {
+
+/// Bad scenario input. The message is `<file>:<line>:<column>: <key path>: <problem>`
+/// (line and column 1-based, from the YAML node at fault; left out when there is no
+/// node, e.g. an unreadable file), e.g.
+/// `demo.yaml:7:10: fleet.count: must be in [1, 254], got 300`.
+/// `fireswarm run` turns it into exit code 2.
+class ScenarioError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// What a fault does to one vehicle. The first six are sim2d's FaultKind
+/// (sim2d/faults.hpp), by the same names; kRadioSilent has no sim2d counterpart:
+/// the runner stops carrying the vehicle's radio bytes both ways for the window.
+enum class FaultKind : std::uint8_t {
+  kStreamCut,    ///< "stream_cut": the sensor delivers nothing
+  kFrozen,       ///< "frozen": the sensor repeats its last value
+  kBias,         ///< "bias": `bias` is added to the sensor's values
+  kExtraNoise,   ///< "extra_noise": the sensor's noise std is multiplied by `noise_factor`
+  kBallast,      ///< "ballast": the centre of mass moves by `ballast_offset_m`
+  kTotalLoss,    ///< "total_loss": the vehicle is gone for good at `at_s` (no duration)
+  kRadioSilent,  ///< "radio_silent": the vehicle neither hears nor is heard
+};
+
+/// The sensor a sensor fault (stream_cut, frozen, bias, extra_noise) acts on;
+/// sim2d's SensorKind by name.
+enum class FaultSensor : std::uint8_t { kGps, kBaro, kAttitude, kBattery };
+
+/// The scenario names: "stream_cut", "gps", ...
+std::string_view ToString(FaultKind kind);
+std::string_view ToString(FaultSensor sensor);
+/// "lawnmower" or "ompl".
+std::string_view ToString(planner::PlannerKind kind);
+
+/// Receiver IDs a fleet may use: 1..254 (0 is the server, 255 broadcast).
+inline constexpr int kMinReceiverId = 1;
+inline constexpr int kMaxReceiverId = radio::kBroadcastId - 1;
+
+/// Defaults that have no owner elsewhere. The fleet's and the radio's below equal
+/// planner::FleetSpec's and radio::ChannelConfig's / radio::SchedulerConfig's (a
+/// test in tests/run/scenario_test.cpp keeps them equal).
+inline constexpr std::uint64_t kDefaultSeed = 1;
+inline constexpr double kDefaultDurationS = 3'600.0;
+inline constexpr double kDefaultFireRadiusM = 10.0;
+inline constexpr double kDefaultDistractorRadiusM = 5.0;  ///< sim2d::Distractor's
+inline constexpr double kDefaultDistractorTempC = 55.0;   ///< sim2d::Distractor's
+inline constexpr std::string_view kDefaultCamera = "seed";
+
+struct FleetConfig {
+  int count = 0;     ///< drones, 1..254 (required)
+  int first_id = 1;  ///< receiver IDs are first_id .. first_id + count - 1 <= 254
+  /// Launch site (vehicles stand a few metres apart around it). When the file
+  /// gives none: planner::DefaultLaunchPoint of the area, and launch_given false.
+  common::LatLon launch;
+  bool launch_given = false;
+  const common::CameraModel* camera = nullptr;  ///< never null after loading
+  double camera_pitch_deg = -90.0;              ///< from the horizon, -90 straight down
+  double altitude_m = 60.0;                     ///< above ground
+  double speed_mps = 10.0;                      ///< cruise
+  double endurance_s = 1'800.0;                 ///< flight time per sortie
+  planner::PlannerKind planner = planner::PlannerKind::kLawnmower;
+
+  /// first_id, first_id + 1, ..., first_id + count - 1.
+  std::vector<int> ReceiverIds() const;
+};
+
+struct RadioConfig {
+  int baud = 57'600;           ///< bits/s, 8N1 framing
+  double turnaround_ms = 5.0;  ///< receive-to-transmit switch time of every radio
+  double loss = 0.0;           ///< probability a transmission is lost for one receiver
+  radio::ChecksumMode checksum = radio::ChecksumMode::kCrc16;
+  radio::LinkMode mode = radio::LinkMode::kSlots;
+};
+
+/// A fire that starts at a given place and time.
+struct FireSpec {
+  common::LatLon position;
+  double start_s = 0.0;                   ///< simulated time of ignition
+  double radius_m = kDefaultFireRadiusM;  ///< burning radius at ignition
+};
+
+/// `count` fires at t = 0, placed by the runner uniformly inside the search area
+/// (area minus no-fly zones) from its own generator seeded with `seed`. Kept as a
+/// spec: the loader does not expand it.
+struct RandomFiresSpec {
+  int count = 0;
+  std::uint64_t seed = kDefaultSeed;  ///< defaults to the scenario's seed
+  double radius_m = kDefaultFireRadiusM;
+};
+
+/// A hot patch that is not fire (sun-heated rock): a disc at a fixed temperature.
+struct DistractorSpec {
+  common::LatLon position;
+  double radius_m = kDefaultDistractorRadiusM;
+  double temp_c = kDefaultDistractorTempC;
+};
+
+struct WindSpec {
+  double speed_mps = 0.0;
+  double from_deg = 0.0;  ///< where it blows from, clockwise from true north, [0, 360)
+};
+
+/// One fault of one vehicle, active for at_s <= t < at_s + duration_s.
+struct FaultSpec {
+  int vehicle = 0;  ///< receiver ID, one of the fleet's
+  double at_s = 0.0;
+  FaultKind kind = FaultKind::kStreamCut;
+  double duration_s = std::numeric_limits<double>::infinity();  ///< inf: to the end
+  FaultSensor sensor = FaultSensor::kGps;                       ///< sensor faults only
+  /// kBias, per sensor: GPS (east_m, north_m, up_m); baro (altitude_m, -, -);
+  /// attitude (roll_rad, pitch_rad, heading_rad); battery (voltage_v, -, -).
+  std::array<double, 3> bias{0.0, 0.0, 0.0};
+  double noise_factor = 1.0;                         ///< kExtraNoise: > 1
+  std::array<double, 2> ballast_offset_m{0.0, 0.0};  ///< kBallast: (forward_m, right_m)
+};
+
+/// Assertions checked against the report; an absent one is not checked.
+struct Expectations {
+  std::optional<double> all_fires_confirmed_within_s;
+  std::optional<double> max_fused_error_m;
+  bool no_collisions = false;          ///< true: any collision fails the run
+  std::optional<double> min_coverage;  ///< fraction 0..1 of the search area seen
+  std::optional<int> max_false_tracks;
+};
+
+/// A whole scenario, checked and defaulted (see docs/scenario.md).
+struct Scenario {
+  std::string source;  ///< the file name errors carry
+  std::string name;    ///< defaults to the file's stem
+  std::uint64_t seed = kDefaultSeed;
+  double duration_s = kDefaultDurationS;  ///< simulated-time limit of the run
+  /// The area and no-fly zones, projected to the area's local frame.
+  planner::SearchArea area;
+  /// The GeoJSON files read, resolved against the scenario's directory (empty
+  /// when given inline).
+  std::optional<std::filesystem::path> area_geojson;
+  std::optional<std::filesystem::path> no_fly_geojson;
+  FleetConfig fleet;
+  RadioConfig radio;
+  std::vector<FireSpec> fires;
+  std::optional<RandomFiresSpec> random_fires;
+  std::vector<DistractorSpec> distractors;
+  WindSpec wind;
+  std::vector<FaultSpec> faults;
+  Expectations expect;
+};
+
+/// Parses scenario YAML `text`. `source_name` prefixes every error message (normally
+/// the file name); relative GeoJSON paths are resolved against `base_dir`.
+/// Throws ScenarioError on malformed YAML, a missing required key (area,
+/// fleet.count), a value of the wrong type or out of range, an unknown key (naming
+/// the nearest valid one), an unknown name (listing the valid ones), a GeoJSON file
+/// that is missing or invalid, or a fire outside the search area.
+Scenario ParseScenario(std::string_view text, const std::string& source_name,
+                       const std::filesystem::path& base_dir);
+
+/// Reads and parses the scenario file at `path` (errors carry `path` as given).
+/// Throws ScenarioError as ParseScenario, and when the file cannot be read.
+Scenario LoadScenario(const std::filesystem::path& path);
+
+/// The planner's view of the fleet: receiver IDs, the launch point in the area's
+/// local frame (one for all), altitude, speed, endurance and camera; the planner's
+/// own defaults for the rest.
+planner::FleetSpec MakeFleetSpec(const Scenario& scenario);
+
+}  // namespace fireswarm::run

@@ -1,0 +1,57 @@
+// The scenario loader's parts, shared by scenario.cpp (top level, fleet, radio,
+// wind, expectations), scenario_area.cpp (area, no-fly zones, positions) and
+// scenario_events.cpp (fires, distractors, faults). Private to the run library.
+#pragma once
+
+#include <filesystem>
+#include <limits>
+
+#include "fireswarm/run/scenario.hpp"
+#include "yaml_field.hpp"
+
+namespace fireswarm::run::internal {
+
+/// Sanity limits: beyond them a value is more likely a unit mistake than a plan.
+inline constexpr double kMaxDurationS = 86'400.0;  // one day of simulated time
+inline constexpr double kMaxAltitudeM = 1'000.0;
+inline constexpr double kMaxSpeedMps = 100.0;
+inline constexpr double kMaxEnduranceS = 86'400.0;
+inline constexpr int kMaxBaud = 10'000'000;
+inline constexpr double kMaxTurnaroundMs = 1'000.0;
+inline constexpr double kMaxFireRadiusM = 1'000.0;
+inline constexpr int kMaxRandomFires = 1'000;
+inline constexpr double kMaxDistractorRadiusM = 1'000.0;
+inline constexpr double kMinDistractorTempC = -50.0;
+inline constexpr double kMaxDistractorTempC = 1'000.0;
+inline constexpr double kMaxWindMps = 50.0;
+inline constexpr double kFullCircleDeg = 360.0;
+inline constexpr double kMaxNoiseFactor = 1'000.0;
+inline constexpr double kMaxBallastOffsetM = 1.0;
+inline constexpr int kMaxFalseTracks = 1'000'000;
+
+/// For open-ended ranges: Range{0.0, kUnbounded, true} is "> 0".
+inline constexpr double kUnbounded = std::numeric_limits<double>::infinity();
+
+inline constexpr Range kLatitudeRange{-90.0, 90.0};
+inline constexpr Range kLongitudeRange{-180.0, 180.0};
+
+/// `lat` and `lon` of `mapping`, both required, in range.
+common::LatLon ReadLatLon(const Mapping& mapping);
+
+/// Reads `area` (required) and `no_fly` of the top-level mapping into
+/// scenario.area, area_geojson and no_fly_geojson, GeoJSON paths resolved against
+/// `base_dir`, through planner::ParseSearchArea.
+void ReadArea(const Mapping& root, const std::filesystem::path& base_dir, Scenario& scenario);
+
+/// Fails at `field` when `position` is farther from the area's origin than the
+/// planner accepts (planner::kMaxDistanceFromOriginM).
+void CheckNearArea(const Field& field, const planner::SearchArea& area, common::LatLon position);
+/// True when `position` lies in the search area (area minus no-fly zones, edges included).
+bool InSearchArea(const planner::SearchArea& area, common::LatLon position);
+/// True when `position` lies strictly inside a no-fly zone.
+bool InNoFly(const planner::SearchArea& area, common::LatLon position);
+
+/// `fires`, `random_fires`, `distractors` and `faults`; needs area, duration_s and fleet.
+void ReadEvents(const Mapping& root, Scenario& scenario);
+
+}  // namespace fireswarm::run::internal
