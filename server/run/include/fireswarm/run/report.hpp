@@ -1,0 +1,104 @@
+// What a `fireswarm run` found: the scenario's outcome scored against the
+// simulator's truth. The runner fills it; report_json writes the report file
+// (docs/scenario.md lists its keys: a contract for tools), the SVG map and the
+// JUnit file are drawn from it. Positions are WGS84 degrees, times simulated
+// seconds from the scenario's start.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "fireswarm/common/local_frame.hpp"
+
+namespace fireswarm::run {
+
+/// One true fire and what the fleet made of it.
+struct FireOutcome {
+  common::LatLon truth;
+  double start_s = 0.0;
+  /// The confirmed track matched to it (nearest within the match radius); absent
+  /// when it was never confirmed.
+  std::optional<common::LatLon> fused;
+  std::optional<double> error_m;         ///< fused to true distance
+  std::optional<double> first_report_s;  ///< first report that went into its track
+  std::optional<double> confirmed_s;     ///< when its track was confirmed
+  std::vector<int> vehicles;             ///< receiver IDs that reported it, ascending
+  /// Fused covariance, (north, east) m^2: [nn, ne, ee]; for the map's ellipse.
+  std::optional<std::array<double, 3>> covariance_ne_m2;
+};
+
+/// A confirmed track that matches no true fire.
+struct FalseTrack {
+  std::int32_t track_id = 0;
+  common::LatLon position;
+  double confirmed_s = 0.0;
+  std::vector<int> vehicles;
+};
+
+struct Collision {
+  double t_s = 0.0;
+  int vehicle_a = 0;
+  int vehicle_b = 0;
+  common::LatLon position;
+};
+
+struct RadioOutcome {
+  double busy_fraction = 0.0;  ///< share of the run the channel carried a transmission
+  /// Per receiver ID: telemetry age (time since the latest telemetry, sampled every
+  /// second while the vehicle flew) p50 and p99, s.
+  std::map<int, std::pair<double, double>> telemetry_age_p50_p99_s;
+  std::uint64_t retries = 0;
+  /// Detection on the vehicle to first receipt at the server, p50 and p99, s.
+  std::optional<double> report_latency_p50_s;
+  std::optional<double> report_latency_p99_s;
+  std::uint64_t reports_sent = 0;      ///< reports the vehicles queued
+  std::uint64_t reports_received = 0;  ///< distinct reports the server received
+  std::uint64_t reports_lost = 0;      ///< queued but never received by the run's end
+};
+
+struct VehicleOutcome {
+  double distance_m = 0.0;            ///< flown, truth
+  double battery_used = 0.0;          ///< fraction of a full charge, truth
+  std::string final_state;            ///< flight mode at the end ("landed", "search", ...)
+  std::vector<common::LatLon> track;  ///< truth positions every few seconds, for the map
+};
+
+/// One `expect` assertion.
+struct ExpectOutcome {
+  std::string name;  ///< the scenario key, e.g. "max_fused_error_m"
+  double value = 0.0;
+  double limit = 0.0;
+  bool passed = false;
+  std::string detail;  ///< why it failed, for people and JUnit
+};
+
+struct Report {
+  std::string scenario;  ///< its name
+  std::uint64_t seed = 0;
+  std::vector<FireOutcome> fires;
+  std::vector<FalseTrack> false_tracks;
+  double coverage = 0.0;  ///< fraction 0..1 of the search area seen by a camera
+  std::vector<std::pair<double, double>> coverage_over_time;  ///< (t_s, fraction)
+  std::vector<Collision> collisions;
+  std::optional<double> min_separation_m;  ///< between any two airborne vehicles
+  RadioOutcome radio;
+  std::map<int, VehicleOutcome> vehicles;  ///< by receiver ID
+  double sim_seconds = 0.0;
+  double wall_seconds = 0.0;
+  double real_time_factor = 0.0;
+  std::vector<ExpectOutcome> expect;
+
+  bool AllExpectationsHold() const {
+    for (const ExpectOutcome& e : expect) {
+      if (!e.passed) return false;
+    }
+    return true;
+  }
+};
+
+}  // namespace fireswarm::run
