@@ -177,4 +177,6 @@ const SchedulerConfig& MasterScheduler::config() const {
   return state_->config;
 }
 
+std::uint16_t MasterScheduler::next_sequence() const { return state_->next_sequence; }
+
 }  // namespace fireswarm::radio

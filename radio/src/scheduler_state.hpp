@@ -49,7 +49,8 @@ struct Exchange {
 };
 
 struct SchedulerState {
-  explicit SchedulerState(const SchedulerConfig& c) : config(c), parser(c.checksum) {}
+  explicit SchedulerState(const SchedulerConfig& c)
+      : config(c), parser(c.checksum), next_sequence(c.first_sequence) {}
 
   SchedulerConfig config;
   FrameParser parser;
@@ -57,7 +58,7 @@ struct SchedulerState {
   std::optional<Exchange> exchange;
   Nanos ready_at{0};                   // no burst may be decided before this
   bool last_turn_was_request = false;  // poll mode: alternate requests with telemetry
-  std::uint16_t next_sequence = 0;
+  std::uint16_t next_sequence;
   RequestId next_request_id = 1;
   std::vector<SchedulerEvent> events;
   SchedulerStats stats;

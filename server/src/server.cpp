@@ -13,6 +13,10 @@ namespace {
 
 constexpr double kMaxInvestigateS = 65'535.0;  // Command::duration_s is 16 bits
 constexpr double kMillisPerSecond = 1e3;
+// Every journal entry carries the radio's next sequence number, so a restored
+// server can start half the sequence space away from where its predecessor was.
+constexpr const char* kRadioSequenceKey = "radio_seq";
+constexpr std::uint16_t kRestartSequenceJump = 0x8000;
 
 double Seconds(radio::Nanos t) {
   return radio::ToSeconds(t);
@@ -120,6 +124,7 @@ Server::Server(const ServerConfig& config, const common::LocalFrame& frame)
 
 void Server::Record(double t_s, std::string kind, nlohmann::json data) {
   if (restoring_) return;
+  data[kRadioSequenceKey] = scheduler_->next_sequence();
   journal_.push_back(JournalEntry{t_s, std::move(kind), std::move(data)});
 }
 
@@ -387,7 +392,14 @@ void Server::UpdateState(double now_s) {
 
 Server Server::Restore(const ServerConfig& config, const common::LocalFrame& frame,
                        const std::vector<JournalEntry>& entries) {
-  Server server(config, frame);
+  ServerConfig restarted = config;
+  for (auto entry = entries.rbegin(); entry != entries.rend(); ++entry) {
+    if (!entry->data.is_object() || !entry->data.contains(kRadioSequenceKey)) continue;
+    restarted.radio.first_sequence = static_cast<std::uint16_t>(
+        entry->data[kRadioSequenceKey].get<std::uint16_t>() + kRestartSequenceJump);
+    break;
+  }
+  Server server(restarted, frame);
   server.restoring_ = true;
   for (std::size_t index = 0; index < entries.size(); ++index) {
     const JournalEntry& entry = entries[index];

@@ -164,6 +164,12 @@ TEST(Server, RestoredFromItsJournalKeepsTracksAndPhasesAndUploadsNothingAgain) {
     EXPECT_EQ(restored.mission()->progress(id).phase, DronePhase::kFlying);
   }
   EXPECT_EQ(restored.scheduler().stats().requests_sent, 0u);
+  // Far from the sequence numbers the vehicles last answered: a new request is not
+  // mistaken for a resend of an old one.
+  const int gap = (restored.scheduler().next_sequence() - fleet.server.scheduler().next_sequence() +
+                   65'536) % 65'536;
+  EXPECT_GT(gap, 30'000);
+  EXPECT_LT(gap, 35'536);
   EXPECT_EQ(restored.registry().ids(), fleet.server.registry().ids());
 }
 

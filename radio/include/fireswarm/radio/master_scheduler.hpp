@@ -59,6 +59,10 @@ struct SchedulerConfig {
   /// Consecutive missed replies after which a vehicle is reported silent and gets
   /// no more report turns until it is heard again.
   int silent_after_missed_replies = 5;
+  /// Sequence number of the first frame. A server restarted mid-mission starts far
+  /// from where its predecessor stopped, so no vehicle takes a new request for a
+  /// resend of the last one it answered (same message ID and sequence).
+  std::uint16_t first_sequence = 0;
   /// Throws std::invalid_argument naming the field when a value is out of range.
   void Validate() const;
 };
@@ -174,6 +178,8 @@ class MasterScheduler {
   const SchedulerStats& stats() const;
   const ParserStats& parser_stats() const;
   const SchedulerConfig& config() const;
+  /// Sequence number the next frame will carry.
+  std::uint16_t next_sequence() const;
 
  private:
   std::unique_ptr<internal::SchedulerState> state_;

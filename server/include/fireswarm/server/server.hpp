@@ -115,7 +115,10 @@ class Server {
   std::vector<JournalEntry> TakeJournalEntries();
   /// Rebuilds the server from the journal entries a previous instance produced:
   /// the vehicles, the mission and each drone's phase (no second upload), every
-  /// fire report (tracks come back with their IDs) and rejection. Throws
+  /// fire report (tracks come back with their IDs) and rejection. The radio's
+  /// sequence numbers restart half their range away from the last journaled one
+  /// (every entry records it), so no vehicle mistakes a new request for a resend
+  /// of the last one it answered. Throws
   /// std::runtime_error naming the entry (its index and kind) when one is malformed.
   static Server Restore(const ServerConfig& config, const common::LocalFrame& frame,
                         const std::vector<JournalEntry>& entries);
