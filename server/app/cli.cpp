@@ -1,6 +1,8 @@
 #include "cli.hpp"
 
+#include <cmath>
 #include <iostream>
+#include <sstream>
 
 namespace fireswarm::app {
 
@@ -25,6 +27,36 @@ bool ParseCommandLine(const std::string& command_name, const std::string& usage_
                      command_name + " --help')");
   }
   return true;
+}
+
+void ThrowBadFlag(const std::string& command, const std::string& flag,
+                  const std::string& requirement, const std::string& got) {
+  throw UsageError("fireswarm " + command + ": --" + flag + " must be " + requirement + ", got '" +
+                   got + "'");
+}
+
+std::string FlagText(double value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
+
+std::optional<common::LatLon> ParseLatLon(const std::string& text) {
+  const std::size_t comma = text.find(',');
+  if (comma == std::string::npos) return std::nullopt;
+  const auto number = [](const std::string& part) -> std::optional<double> {
+    std::size_t used = 0;
+    try {
+      const double value = std::stod(part, &used);
+      if (used == part.size() && std::isfinite(value)) return value;
+    } catch (const std::exception&) {
+    }
+    return std::nullopt;
+  };
+  const std::optional<double> lat = number(text.substr(0, comma));
+  const std::optional<double> lon = number(text.substr(comma + 1));
+  if (!lat || !lon || !common::IsValidLatLon({*lat, *lon})) return std::nullopt;
+  return common::LatLon{*lat, *lon};
 }
 
 }  // namespace fireswarm::app

@@ -3,9 +3,12 @@
 #pragma once
 
 #include <boost/program_options.hpp>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include "fireswarm/common/local_frame.hpp"
 
 namespace fireswarm::app {
 
@@ -36,5 +39,16 @@ bool ParseCommandLine(const std::string& command_name, const std::string& usage_
                       const boost::program_options::positional_options_description& positional,
                       const std::vector<std::string>& args,
                       boost::program_options::variables_map& values);
+
+/// Throws UsageError "fireswarm <command>: --<flag> must be <requirement>, got '<got>'".
+[[noreturn]] void ThrowBadFlag(const std::string& command, const std::string& flag,
+                               const std::string& requirement, const std::string& got);
+
+/// A number as flag messages show it (as an ostream prints it: 0.5, 1e+06).
+std::string FlagText(double value);
+
+/// "lat,lon" in WGS84 degrees (as --launch and --fire take it); nullopt when it is
+/// not two numbers or lies outside [-90, 90] x [-180, 180].
+std::optional<common::LatLon> ParseLatLon(const std::string& text);
 
 }  // namespace fireswarm::app

@@ -13,5 +13,8 @@ int RunPlan(const std::vector<std::string>& args);
 int RunSimBench(const std::vector<std::string>& args);
 int RunVehicle(const std::vector<std::string>& args);
 int RunParams(const std::vector<std::string>& args);
+int RunRun(const std::vector<std::string>& args);
+int RunServe(const std::vector<std::string>& args);
+int RunSim(const std::vector<std::string>& args);
 
 }  // namespace fireswarm::app

@@ -105,14 +105,12 @@ std::vector<int> ReceiverIds(const Flags& f) {
 
 planner::Point Launch(const Flags& f, const SearchArea& area) {
   if (f.launch.empty()) return planner::DefaultLaunchPoint(area);
-  const std::vector<std::string> parts = SplitOn(f.launch, ',');
-  const auto lat = parts.size() == 2 ? ParseNumber(parts[0]) : std::nullopt;
-  const auto lon = parts.size() == 2 ? ParseNumber(parts[1]) : std::nullopt;
-  if (!lat || !lon || !common::IsValidLatLon({*lat, *lon})) {
+  const std::optional<common::LatLon> launch = ParseLatLon(f.launch);
+  if (!launch) {
     BadFlag("launch", "must be 'lat,lon' in degrees (lat in [-90, 90], lon in [-180, 180]), got '" +
                           f.launch + "'");
   }
-  const common::EastNorth local = area.frame.ToLocal({*lat, *lon});
+  const common::EastNorth local = area.frame.ToLocal(*launch);
   return {local.east_m, local.north_m};
 }
 

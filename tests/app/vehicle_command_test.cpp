@@ -20,6 +20,7 @@
 #include <variant>
 #include <vector>
 
+#include "app/fireswarm_process.hpp"
 #include "app/run_fireswarm.hpp"
 #include "fireswarm/common/local_frame.hpp"
 #include "fireswarm/radio/master_scheduler.hpp"
@@ -44,93 +45,6 @@ constexpr auto kStartDeadline = seconds(10);   // until the process prints its p
 constexpr auto kFlightDeadline = seconds(60);  // until the vehicle climbs past 20 m
 constexpr auto kRequestDeadline = seconds(10);
 constexpr auto kExitDeadline = seconds(10);
-
-// `fireswarm <args>` as a child process whose stdout this test reads line by line.
-class FireswarmProcess {
- public:
-  explicit FireswarmProcess(const std::vector<std::string>& args) {
-    const char* binary = std::getenv("FIRESWARM_BIN");
-    if (binary == nullptr) {
-      ADD_FAILURE() << "FIRESWARM_BIN is not set (ctest sets it)";
-      return;
-    }
-    int pipe_fds[2];
-    if (::pipe2(pipe_fds, O_CLOEXEC) != 0) {
-      ADD_FAILURE() << "pipe failed";
-      return;
-    }
-    std::vector<std::string> argv_strings{binary};
-    argv_strings.insert(argv_strings.end(), args.begin(), args.end());
-    std::vector<char*> argv;
-    for (std::string& arg : argv_strings) argv.push_back(arg.data());
-    argv.push_back(nullptr);
-    pid_ = ::fork();
-    if (pid_ == 0) {
-      ::dup2(pipe_fds[1], STDOUT_FILENO);
-      ::close(pipe_fds[0]);
-      ::close(pipe_fds[1]);
-      ::execv(binary, argv.data());
-      ::_exit(127);
-    }
-    ::close(pipe_fds[1]);
-    stdout_ = pipe_fds[0];
-    if (pid_ < 0) ADD_FAILURE() << "fork failed";
-  }
-  ~FireswarmProcess() {
-    if (pid_ > 0) {
-      ::kill(pid_, SIGKILL);
-      ::waitpid(pid_, nullptr, 0);
-    }
-    if (stdout_ >= 0) ::close(stdout_);
-  }
-  FireswarmProcess(const FireswarmProcess&) = delete;
-  FireswarmProcess& operator=(const FireswarmProcess&) = delete;
-
-  /// The next stdout line, or nullopt at end of file or once `deadline` passed.
-  std::optional<std::string> ReadLine(Clock::time_point deadline) {
-    while (true) {
-      const auto newline = buffer_.find('\n');
-      if (newline != std::string::npos) {
-        std::string line = buffer_.substr(0, newline);
-        buffer_.erase(0, newline + 1);
-        return line;
-      }
-      if (stdout_ < 0 || eof_) return std::nullopt;
-      const auto left = std::chrono::ceil<std::chrono::milliseconds>(deadline - Clock::now());
-      if (left.count() <= 0) return std::nullopt;
-      pollfd readable{stdout_, POLLIN, 0};
-      if (::poll(&readable, 1, static_cast<int>(left.count())) <= 0) continue;
-      char chunk[256];
-      const ssize_t got = ::read(stdout_, chunk, sizeof chunk);
-      if (got <= 0) {
-        eof_ = true;
-      } else {
-        buffer_.append(chunk, static_cast<std::size_t>(got));
-      }
-    }
-  }
-
-  void Signal(int signal) const { ::kill(pid_, signal); }
-
-  /// Reads stdout to its end, then reaps the process. Returns its exit code (-1 if it
-  /// did not exit normally or stdout stayed open past `deadline`) and its lines.
-  RunResult Finish(Clock::time_point deadline) {
-    RunResult result;
-    while (auto line = ReadLine(deadline)) result.lines.push_back(*line);
-    if (!eof_ || pid_ <= 0) return result;
-    int status = 0;
-    ::waitpid(pid_, &status, 0);
-    pid_ = -1;
-    result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return result;
-  }
-
- private:
-  pid_t pid_ = -1;
-  int stdout_ = -1;
-  std::string buffer_;
-  bool eof_ = false;
-};
 
 std::string Loopback(std::uint16_t port) {
   return "127.0.0.1:" + std::to_string(port);

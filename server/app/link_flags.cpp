@@ -1,0 +1,71 @@
+#include "link_flags.hpp"
+
+#include "cli.hpp"
+
+namespace fireswarm::app {
+
+namespace po = boost::program_options;
+
+void AddLinkOptions(po::options_description& options, LinkFlags& f) {
+  auto add = options.add_options();
+  add("udp", po::value(&f.udp)->multitoken()->value_name("LOCAL REMOTE"),
+      "UDP link: bind LOCAL (host:port, port 0 = any) and send to REMOTE (host:port)");
+  add("serial", po::value(&f.serial)->value_name("DEVICE"), "serial link: the modem's device");
+  add("baud", po::value(&f.baud)->default_value(f.baud),
+      "serial speed, 8N1 (with --serial); turn timing assumes it on both ends");
+  add("mode", po::value(&f.mode)->default_value(f.mode), "poll or slots, on both ends");
+  add("checksum", po::value(&f.checksum)->default_value(f.checksum), "xor or crc16, on both ends");
+  add("print-bound-port", po::bool_switch(&f.print_bound_port),
+      "print 'bound_port=<port>' on stdout once the UDP link is bound");
+}
+
+void CheckLinkFlags(const std::string& command, const LinkFlags& f,
+                    const po::variables_map& values) {
+  const std::string prefix = "fireswarm " + command + ": ";
+  const bool udp = values.count("udp") != 0U;
+  const bool serial = values.count("serial") != 0U;
+  if (udp == serial) {
+    throw UsageError(prefix +
+                     "give exactly one link, --udp LOCAL REMOTE or --serial DEVICE (see "
+                     "'fireswarm " +
+                     command + " --help')");
+  }
+  if (udp && f.udp.size() != 2) {
+    throw UsageError(prefix + "--udp must be two endpoints, LOCAL REMOTE (host:port each), got " +
+                     std::to_string(f.udp.size()) + " values");
+  }
+  if (!serial && !values["baud"].defaulted()) {
+    throw UsageError(prefix + "--baud goes with --serial");
+  }
+  if (f.print_bound_port && !udp) {
+    throw UsageError(prefix + "--print-bound-port goes with --udp");
+  }
+  if (!radio::ParseLinkMode(f.mode)) {
+    throw UsageError(prefix + "--mode must be poll or slots, got '" + f.mode + "'");
+  }
+  if (!radio::ParseChecksumMode(f.checksum)) {
+    throw UsageError(prefix + "--checksum must be xor or crc16, got '" + f.checksum + "'");
+  }
+}
+
+OpenedLink OpenLink(const LinkFlags& f) {
+  OpenedLink opened;
+  if (f.serial.empty()) {
+    auto udp = std::make_unique<radio::UdpLink>(f.udp[0], f.udp[1]);
+    opened.udp = udp.get();
+    opened.link = std::move(udp);
+  } else {
+    opened.link = radio::OpenSerialLink(f.serial, f.baud);
+  }
+  return opened;
+}
+
+radio::LinkMode ModeOf(const LinkFlags& f) {
+  return *radio::ParseLinkMode(f.mode);
+}
+
+radio::ChecksumMode ChecksumOf(const LinkFlags& f) {
+  return *radio::ParseChecksumMode(f.checksum);
+}
+
+}  // namespace fireswarm::app

@@ -1,0 +1,46 @@
+// The radio-link flags shared by the commands that talk over a real link
+// (`vehicle`, `sim`, `serve`): --udp LOCAL REMOTE | --serial DEVICE [--baud B],
+// --mode, --checksum, --print-bound-port; their checks and the link they open.
+#pragma once
+
+#include <boost/program_options.hpp>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "fireswarm/radio/discipline.hpp"
+#include "fireswarm/radio/link.hpp"
+#include "fireswarm/radio/udp_link.hpp"
+
+namespace fireswarm::app {
+
+struct LinkFlags {
+  std::vector<std::string> udp;  ///< LOCAL REMOTE
+  std::string serial;            ///< device, empty = none
+  unsigned baud = 57'600;
+  std::string mode = "slots";
+  std::string checksum = "crc16";
+  bool print_bound_port = false;
+};
+
+/// Adds the link options to `options`, writing into `flags` (which must outlive them).
+void AddLinkOptions(boost::program_options::options_description& options, LinkFlags& flags);
+
+/// Throws UsageError naming the flag ("fireswarm <command>: --mode ...") unless
+/// exactly one link is given and every link flag is valid.
+void CheckLinkFlags(const std::string& command, const LinkFlags& flags,
+                    const boost::program_options::variables_map& values);
+
+/// The link the flags name, opened; `udp` points into it for a UDP link.
+struct OpenedLink {
+  std::unique_ptr<radio::IoLink> link;
+  radio::UdpLink* udp = nullptr;
+};
+/// Throws as radio::OpenSerialLink and radio::UdpLink. Precondition: CheckLinkFlags passed.
+OpenedLink OpenLink(const LinkFlags& flags);
+
+/// The link timing, mode and checksum the flags select. Precondition: CheckLinkFlags passed.
+radio::LinkMode ModeOf(const LinkFlags& flags);
+radio::ChecksumMode ChecksumOf(const LinkFlags& flags);
+
+}  // namespace fireswarm::app

@@ -1,0 +1,291 @@
+// `fireswarm serve`: the command server on the wall clock. Plans the search of a
+// GeoJSON area, registers the fleet, uploads and starts the mission over a real
+// radio link (a serial modem, or UDP), fuses the fire reports, publishes on LCM
+// and journals what must survive a restart. Started again on the same --journal
+// it resumes the mission where the journal left it: no new plan, no new upload.
+#include <cstdint>
+#include <filesystem>
+#include <iostream>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "cli.hpp"
+#include "commands.hpp"
+#include "fireswarm/common/camera_model.hpp"
+#include "fireswarm/planner/area_io.hpp"
+#include "fireswarm/planner/plan.hpp"
+#include "fireswarm/server/journal.hpp"
+#include "fireswarm/server/lcm_bridge.hpp"
+#include "fireswarm/server/mission_manager.hpp"
+#include "fireswarm/server/server.hpp"
+#include "link_flags.hpp"
+#include "serve_loop.hpp"
+#include "stop_signals.hpp"
+
+namespace fireswarm::app {
+namespace {
+
+namespace po = boost::program_options;
+namespace fs = std::filesystem;
+using radio::Nanos;
+
+constexpr const char* kName = "serve";
+constexpr int kMaxId = 254;
+constexpr std::uint16_t kMissionId = 1;
+// Waypoints this close to the launch site count as the launch site, m.
+constexpr double kLaunchSiteM = 1.0;
+
+struct Flags {
+  std::string area;
+  std::string no_fly;
+  int drones = 0;
+  int first_id = 1;
+  std::string launch;
+  double altitude_m = 60.0;
+  double speed_mps = 10.0;
+  std::string camera = "seed";
+  double telemetry_hz = 1.0;
+  LinkFlags link;
+  std::string lcm_url;
+  std::string log;
+  std::string csv;
+  std::string journal;
+  bool start = false;
+  std::optional<double> duration_s;
+  bool until_complete = false;
+};
+
+[[noreturn]] void BadFlag(const std::string& flag, const std::string& requirement,
+                          const std::string& got) {
+  ThrowBadFlag(kName, flag, requirement, got);
+}
+
+void CheckFlags(const Flags& f, const po::variables_map& values) {
+  CheckLinkFlags(kName, f.link, values);
+  if (f.area.empty()) BadFlag("area", "given (a GeoJSON file)", "");
+  if (f.drones < 1 || f.drones > kMaxId) BadFlag("drones", "in 1..254", std::to_string(f.drones));
+  if (f.first_id < 1 || f.first_id + f.drones - 1 > kMaxId) {
+    BadFlag("first-id", "in 1..254 with every ID up to first-id + drones - 1 <= 254",
+            std::to_string(f.first_id));
+  }
+  if (!f.launch.empty() && !ParseLatLon(f.launch))
+    BadFlag("launch", "LAT,LON in degrees", f.launch);
+  if (!(f.altitude_m > 0.0)) BadFlag("altitude-m", "> 0", FlagText(f.altitude_m));
+  if (!(f.speed_mps > 0.0)) BadFlag("speed-mps", "> 0", FlagText(f.speed_mps));
+  if (common::FindCameraModel(f.camera) == nullptr) {
+    BadFlag("camera", common::CameraModelNames(), f.camera);
+  }
+  if (!(f.telemetry_hz > 0.0 && f.telemetry_hz <= 50.0)) {
+    BadFlag("telemetry-hz", "in (0, 50]", FlagText(f.telemetry_hz));
+  }
+  if (f.duration_s && !(*f.duration_s > 0.0)) BadFlag("duration-s", "> 0", FlagText(*f.duration_s));
+  if (!f.start && f.lcm_url.empty()) {
+    throw UsageError(
+        "fireswarm serve: give --start, or --lcm URL to wait for an operator's START (otherwise "
+        "the mission would never start)");
+  }
+}
+
+server::ServerConfig ServerConfigFor(const Flags& f) {
+  server::ServerConfig config;
+  config.radio.mode = ModeOf(f.link);
+  config.radio.checksum = ChecksumOf(f.link);
+  config.radio.timing.baud = static_cast<int>(f.link.baud);
+  config.telemetry_hz = f.telemetry_hz;
+  return config;
+}
+
+std::vector<int> ReceiverIds(const Flags& f) {
+  std::vector<int> ids;
+  for (int i = 0; i < f.drones; ++i) ids.push_back(f.first_id + i);
+  return ids;
+}
+
+// Each vehicle takes off from its own stand around the launch site and lands
+// there again: the launch-site waypoints at either end of each route are dropped,
+// or every vehicle would fly to the same point at the same altitude.
+void DropLaunchSite(const planner::SearchArea& area, planner::Point launch,
+                    std::vector<server::DroneMission>& missions) {
+  const auto at_launch = [&](const radio::Waypoint& waypoint) {
+    const common::EastNorth local = area.frame.ToLocal({waypoint.lat_deg, waypoint.lon_deg});
+    const double de = local.east_m - launch.x();
+    const double dn = local.north_m - launch.y();
+    return de * de + dn * dn < kLaunchSiteM * kLaunchSiteM;
+  };
+  for (server::DroneMission& mission : missions) {
+    std::vector<radio::Waypoint>& route = mission.waypoints;
+    while (route.size() > 1 && at_launch(route.back())) route.pop_back();
+    std::size_t first = 0;
+    while (first + 1 < route.size() && at_launch(route[first])) ++first;
+    route.erase(route.begin(), route.begin() + static_cast<std::ptrdiff_t>(first));
+  }
+}
+
+std::vector<server::DroneMission> PlanMissions(const Flags& f, const planner::SearchArea& area) {
+  planner::FleetSpec fleet;
+  fleet.receiver_ids = ReceiverIds(f);
+  planner::Point launch = planner::DefaultLaunchPoint(area);
+  if (!f.launch.empty()) {
+    const common::EastNorth local = area.frame.ToLocal(*ParseLatLon(f.launch));
+    launch = planner::Point(local.east_m, local.north_m);
+  }
+  fleet.launch_points = {launch};
+  fleet.altitude_m = f.altitude_m;
+  fleet.speed_mps = f.speed_mps;
+  fleet.camera = common::FindCameraModel(f.camera);
+  planner::Plan plan;
+  try {
+    plan = planner::PlanSearch(area, fleet);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(std::string("fireswarm serve: the planner refused the fleet: ") + e.what());
+  }
+  std::vector<server::DroneMission> missions =
+      server::ToDroneMissions(plan, kMissionId, f.altitude_m, f.speed_mps);
+  DropLaunchSite(area, launch, missions);
+  nlohmann::ordered_json line;
+  line["event"] = "planned";
+  line["drones"] = plan.drones.size();
+  line["coverage"] = plan.coverage;
+  line["makespan_s"] = plan.makespan_s;
+  std::cout << line.dump() << std::endl;
+  return missions;
+}
+
+std::optional<server::LcmBridge> BridgeFor(const Flags& f) {
+  if (f.lcm_url.empty() && f.log.empty() && f.csv.empty()) return std::nullopt;
+  server::LcmBridgeConfig config;
+  config.url = f.lcm_url;
+  if (!f.log.empty()) config.log_path = f.log;
+  if (!f.csv.empty()) config.csv_dir = f.csv;
+  return std::optional<server::LcmBridge>(std::in_place, config);
+}
+
+void PrintResumed(const server::Journal& journal, std::size_t records, const server::Server& server,
+                  Nanos clock_offset) {
+  nlohmann::ordered_json line;
+  line["event"] = "resumed";
+  line["journal"] = journal.path().string();
+  line["records"] = records;
+  line["dropped_lines"] = journal.recovery().dropped_lines;
+  line["state"] = server::ToString(server.state());
+  line["tracks"] = server.fusion().tracks().size();
+  line["t_s"] = radio::ToSeconds(clock_offset);
+  std::cout << line.dump() << std::endl;
+}
+
+// What a journal did not bring back (all of it for a new mission): the fleet, the
+// mission (planned now), the start.
+void CompleteSetup(const Flags& f, const planner::SearchArea& area, Nanos now,
+                   server::Server& server) {
+  const double now_s = radio::ToSeconds(now);
+  for (const int id : ReceiverIds(f)) {
+    if (!server.registry().Contains(static_cast<std::uint8_t>(id))) server.AddVehicle(id, now_s);
+  }
+  if (server.mission() == nullptr) server.LoadMission(PlanMissions(f, area), now_s);
+  if (f.start && server.state() == server::MissionState::kIdle) {
+    server::OperatorCommand start;
+    start.reason = "--start";
+    std::string why;
+    if (!server.Handle(start, now, &why)) {
+      throw std::runtime_error("the server refused to start the mission: " + why);
+    }
+  }
+}
+
+// The options, written into `f` (which must outlive them).
+po::options_description OptionsFor(Flags& f) {
+  po::options_description options("serve options");
+  auto add = options.add_options();
+  add("area", po::value(&f.area)->value_name("FILE"),
+      "search area: GeoJSON Polygon/MultiPolygon (features with \"no_fly\": true are no-fly)");
+  add("no-fly", po::value(&f.no_fly)->value_name("FILE"), "no-fly zones: GeoJSON polygons");
+  add("drones", po::value(&f.drones), "number of vehicles, 1..254");
+  add("first-id", po::value(&f.first_id)->default_value(f.first_id),
+      "receiver ID of the first vehicle; the others follow");
+  add("launch", po::value(&f.launch)->value_name("LAT,LON"),
+      "launch site (default: the area's centroid, or its corner nearest to it)");
+  add("altitude-m", po::value(&f.altitude_m)->default_value(f.altitude_m),
+      "search altitude above ground, m");
+  add("speed-mps", po::value(&f.speed_mps)->default_value(f.speed_mps), "cruise speed, m/s");
+  add("camera", po::value(&f.camera)->default_value(f.camera),
+      ("the fleet's thermal camera (sets the lane spacing): " + common::CameraModelNames())
+          .c_str());
+  add("telemetry-hz", po::value(&f.telemetry_hz)->default_value(f.telemetry_hz),
+      "telemetry turns per vehicle and second");
+  AddLinkOptions(options, f.link);
+  add("lcm", po::value(&f.lcm_url)->value_name("URL"),
+      "publish on LCM and take operator commands there, e.g. udpm://239.255.76.67:7667?ttl=0 "
+      "(default: no LCM network)");
+  add("log", po::value(&f.log)->value_name("FILE"), "write an LCM log for lcm-logplayer");
+  add("csv", po::value(&f.csv)->value_name("DIR"), "write one CSV per message type into DIR");
+  add("journal", po::value(&f.journal)->value_name("FILE"),
+      "append mission state and fire reports here; an existing journal is resumed");
+  add("start", po::bool_switch(&f.start),
+      "start the mission at once (default: wait for an operator START on LCM)");
+  add("duration-s", po::value<double>()->notifier([&f](double v) { f.duration_s = v; }),
+      "stop after this much wall time, s (default: run until SIGINT or SIGTERM)");
+  add("until-complete", po::bool_switch(&f.until_complete),
+      "stop once the mission is complete: exit 0 (1 when aborted or --duration-s passed first)");
+  return options;
+}
+
+}  // namespace
+
+int RunServe(const std::vector<std::string>& args) {
+  Flags f;
+  const po::options_description options = OptionsFor(f);
+  po::variables_map values;
+  if (!ParseCommandLine(kName,
+                        "--area A.geojson --drones N (--serial DEVICE | --udp LOCAL REMOTE) "
+                        "(--start | --lcm URL) [options]",
+                        options, {}, args, values)) {
+    return kExitOk;
+  }
+  CheckFlags(f, values);
+  const planner::SearchArea area = planner::LoadSearchArea(
+      f.area, f.no_fly.empty() ? std::nullopt : std::optional<fs::path>(f.no_fly));
+  const server::ServerConfig config = ServerConfigFor(f);
+
+  // The journal first: a resumed mission needs no plan.
+  std::vector<server::JournalEntry> entries;
+  std::optional<server::Journal> journal;
+  if (!f.journal.empty()) {
+    journal.emplace(server::Journal::Open(f.journal, [&](const server::JournalRecord& record) {
+      entries.push_back(server::JournalEntry{record.t_s, record.kind, record.data});
+    }));
+  }
+  const bool resumed = !entries.empty();
+  Nanos clock_offset{0};
+  for (const server::JournalEntry& entry : entries) {
+    clock_offset = std::max(clock_offset, radio::FromSeconds(entry.t_s));
+  }
+  server::Server server = resumed ? server::Server::Restore(config, area.frame, entries)
+                                  : server::Server(config, area.frame);
+  if (resumed) PrintResumed(*journal, entries.size(), server, clock_offset);
+
+  const StopOnSignals stop_on_signals;
+  const OpenedLink link = OpenLink(f.link);
+  std::optional<server::LcmBridge> bridge = BridgeFor(f);
+  ServeLoop loop(server, *link.link, journal ? &*journal : nullptr, bridge ? &*bridge : nullptr);
+
+  CompleteSetup(f, area, clock_offset, server);
+  loop.FlushJournal();
+  if (f.link.print_bound_port) std::cout << "bound_port=" << link.udp->local_port() << std::endl;
+
+  ServeOptions run;
+  run.clock_offset = clock_offset;
+  run.duration_s = f.duration_s;
+  run.until_complete = f.until_complete;
+  const ServeStop stop = loop.Run(run);
+  nlohmann::ordered_json summary = loop.Summary();
+  summary["stop"] = ToString(stop);
+  summary["resumed"] = resumed;
+  std::cout << summary.dump() << std::endl;
+  if (f.until_complete && stop != ServeStop::kComplete && stop != ServeStop::kSignal) {
+    return kExitCheckFailed;
+  }
+  return kExitOk;
+}
+
+}  // namespace fireswarm::app

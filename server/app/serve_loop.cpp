@@ -1,0 +1,216 @@
+#include "serve_loop.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "fireswarm/radio/messages.hpp"
+#include "stop_signals.hpp"
+
+namespace fireswarm::app {
+namespace {
+
+using radio::Nanos;
+using Clock = std::chrono::steady_clock;
+
+// The loop wakes at least this often: to see a stop signal, and operator
+// commands arriving on LCM (the wait is on the radio link only).
+constexpr Nanos kMaxWait = std::chrono::milliseconds(50);
+
+std::int64_t UnixMicros() {
+  return std::chrono::duration_cast<std::chrono::microseconds>(
+             std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+
+}  // namespace
+
+const char* ToString(ServeStop stop) {
+  switch (stop) {
+    case ServeStop::kSignal:
+      return "signal";
+    case ServeStop::kDuration:
+      return "duration";
+    case ServeStop::kComplete:
+      return "complete";
+    case ServeStop::kAborted:
+      return "aborted";
+  }
+  return "unknown";
+}
+
+nlohmann::ordered_json EventLine(const server::JournalEntry& entry) {
+  nlohmann::ordered_json line;
+  line["event"] = entry.kind;
+  line["t_s"] = entry.t_s;
+  const nlohmann::json& data = entry.data;
+  if (entry.kind == "phase") {
+    line["vehicle"] = data.at("vehicle");
+    line["phase"] = server::ToString(static_cast<server::DronePhase>(data.at("phase").get<int>()));
+  } else if (entry.kind == "state") {
+    line["state"] =
+        server::ToString(static_cast<server::MissionState>(data.at("state").get<int>()));
+  } else if (entry.kind == "mission") {
+    nlohmann::ordered_json drones = nlohmann::ordered_json::array();
+    for (const nlohmann::json& drone : data.at("drones")) {
+      drones.push_back(
+          {{"vehicle", drone.at("vehicle")}, {"waypoints", drone.at("waypoints").size()}});
+    }
+    line["drones"] = std::move(drones);
+  } else if (entry.kind == "report") {
+    line["vehicle"] = data.at("vehicle");
+    line["report_id"] = data.at("report_id");
+  } else if (data.is_object()) {
+    for (const auto& [key, value] : data.items()) line[key] = value;
+  }
+  return line;
+}
+
+ServeLoop::ServeLoop(server::Server& server, radio::IoLink& link, server::Journal* journal,
+                     server::LcmBridge* bridge)
+    : server_(server),
+      link_(link),
+      journal_(journal),
+      bridge_(bridge),
+      sent_parser_(server.scheduler().config().checksum) {}
+
+void ServeLoop::FlushJournal() {
+  for (const server::JournalEntry& entry : server_.TakeJournalEntries()) {
+    if (journal_ != nullptr) {
+      journal_->Append(entry.t_s, entry.kind, entry.data);
+      ++journal_appended_;
+    }
+    std::cout << EventLine(entry).dump() << std::endl;
+  }
+}
+
+void ServeLoop::CountFrames(const radio::Burst& burst) {
+  sent_parser_.Feed(burst.bytes, [&](const radio::FrameView& frame) {
+    const auto name = radio::MessageName(frame.message_id);
+    ++frames_sent_[name ? std::string(*name) : std::to_string(frame.message_id)];
+  });
+}
+
+void ServeLoop::HandleOperatorCommands(Nanos now) {
+  if (bridge_ == nullptr) return;
+  for (const server::OperatorCommand& command : bridge_->TakeCommands()) {
+    std::string why;
+    const bool accepted = server_.Handle(command, now, &why);
+    nlohmann::ordered_json line;
+    line["event"] = "operator_command";
+    line["t_s"] = radio::ToSeconds(now);
+    line["command"] = static_cast<int>(command.kind);
+    line["accepted"] = accepted;
+    if (!accepted) line["why"] = why;
+    std::cout << line.dump() << std::endl;
+  }
+}
+
+ServeStop ServeLoop::Run(const ServeOptions& options) {
+  const Clock::time_point start = Clock::now();
+  const auto now = [&] { return options.clock_offset + (Clock::now() - start); };
+  // Wall time since the start; Nanos::max(): no limit.
+  const Nanos end = options.duration_s ? radio::FromSeconds(*options.duration_s) : Nanos::max();
+  // LCM utime: the Unix-epoch wall clock; mission time 0 is this far back.
+  const std::int64_t utime_at_zero =
+      UnixMicros() -
+      std::chrono::duration_cast<std::chrono::microseconds>(options.clock_offset).count();
+  std::vector<std::uint8_t> received;
+  ServeStop stop = ServeStop::kSignal;
+  while (true) {
+    if (StopRequested()) {
+      stop = ServeStop::kSignal;
+      break;
+    }
+    received.clear();
+    link_.Receive(now(), received);
+    const Nanos t = now();
+    HandleOperatorCommands(t);
+    for (const radio::Burst& burst : server_.Step(t, received)) {
+      link_.Transmit(t, burst.start, burst.bytes);
+      CountFrames(burst);
+    }
+    FlushJournal();  // durable before anything else happens
+    if (bridge_ != nullptr)
+      bridge_->Publish(server_, radio::ToSeconds(t), UnixMicros(), utime_at_zero);
+    clock_s_ = radio::ToSeconds(t);
+
+    const server::MissionState state = server_.state();
+    if (options.until_complete && state == server::MissionState::kComplete) {
+      stop = ServeStop::kComplete;
+      break;
+    }
+    if (options.until_complete && state == server::MissionState::kAborted) {
+      stop = ServeStop::kAborted;
+      break;
+    }
+    const Nanos elapsed = Clock::now() - start;
+    if (elapsed >= end) {
+      stop = ServeStop::kDuration;
+      break;
+    }
+    Nanos next = std::min(server_.NextWakeup(), now() + kMaxWait);
+    if (bridge_ != nullptr) {
+      next = std::min(next, radio::FromSeconds(std::min(bridge_->NextPublishS(), 1e9)));
+    }
+    if (end != Nanos::max()) next = std::min(next, options.clock_offset + end);
+    link_.WaitReadable(std::max(Nanos{0}, next - now()));
+  }
+  wall_seconds_ = radio::ToSeconds(Clock::now() - start);
+  return stop;
+}
+
+nlohmann::ordered_json ServeLoop::Summary() const {
+  nlohmann::ordered_json j;
+  j["event"] = "summary";
+  j["state"] = server::ToString(server_.state());
+  j["wall_seconds"] = wall_seconds_;
+  j["mission_clock_s"] = clock_s_;
+  j["mission_seconds"] =
+      server_.state() == server::MissionState::kIdle ? 0.0 : clock_s_ - server_.mission_started_s();
+  nlohmann::ordered_json vehicles = nlohmann::ordered_json::array();
+  for (const std::uint8_t id : server_.registry().ids()) {
+    nlohmann::ordered_json v;
+    v["id"] = id;
+    v["link"] = std::string(server::ToString(server_.registry().LinkAt(id, clock_s_)));
+    if (const server::MissionManager* mission = server_.mission()) {
+      const auto ids = mission->vehicles();
+      if (std::find(ids.begin(), ids.end(), id) != ids.end()) {
+        const server::DroneProgress& progress = mission->progress(id);
+        v["phase"] = server::ToString(progress.phase);
+        v["waypoint_index"] = progress.waypoint_index;
+        v["waypoints"] = progress.waypoint_count;
+        if (!progress.failure.empty()) v["failure"] = progress.failure;
+      }
+    }
+    vehicles.push_back(std::move(v));
+  }
+  j["vehicles"] = std::move(vehicles);
+  nlohmann::ordered_json tracks = nlohmann::ordered_json::array();
+  for (const server::FireTrack& track : server_.fusion().tracks()) {
+    const common::LatLon at =
+        server_.frame().ToGeodetic({track.position_ne_m.y(), track.position_ne_m.x()});
+    tracks.push_back({{"id", track.track_id},
+                      {"status", std::string(server::ToString(track.status))},
+                      {"lat_deg", at.lat_deg},
+                      {"lon_deg", at.lon_deg},
+                      {"reports", track.report_count},
+                      {"vehicles", track.vehicle_ids},
+                      {"first_seen_s", track.first_seen_s}});
+  }
+  j["tracks"] = std::move(tracks);
+  j["frames_sent"] = frames_sent_;
+  const radio::SchedulerStats& stats = server_.scheduler().stats();
+  j["radio"] = {
+      {"bytes_sent", server_.bytes_sent()},       {"bytes_received", server_.bytes_received()},
+      {"requests_sent", stats.requests_sent},     {"retries", stats.retries},
+      {"requests_failed", stats.requests_failed}, {"replies", stats.replies},
+      {"missed_replies", stats.missed_replies},   {"telemetry", stats.telemetry},
+      {"fire_reports", stats.fire_reports}};
+  j["journal_records_appended"] = journal_appended_;
+  return j;
+}
+
+}  // namespace fireswarm::app

@@ -1,0 +1,225 @@
+// `fireswarm sim`: N simulated APOne vehicles in one sim2d world behind one real
+// link, serial or UDP, paced by the wall clock: a fleet for `fireswarm serve` on
+// the other end. The vehicles share the link as they would share one radio modem
+// (sim_link_loop.hpp): each hears every byte, and the server's turns keep their
+// replies apart.
+#include <cmath>
+#include <cstdint>
+#include <iostream>
+#include <numbers>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "cli.hpp"
+#include "commands.hpp"
+#include "fireswarm/agents/params.hpp"
+#include "fireswarm/common/camera_model.hpp"
+#include "fireswarm/common/local_frame.hpp"
+#include "link_flags.hpp"
+#include "sim_link_loop.hpp"
+#include "stop_signals.hpp"
+
+namespace fireswarm::app {
+namespace {
+
+namespace po = boost::program_options;
+using radio::Nanos;
+
+constexpr const char* kName = "sim";
+constexpr int kMaxId = 254;
+constexpr double kMinSpeed = 1.0;
+constexpr double kMaxSpeed = 1000.0;
+// The world's fire grid: a square of this half-width around the launch site.
+constexpr double kWorldHalfWidthM = 2000.0;
+constexpr double kFireCellM = 5.0;
+// A fire starts as a burning disc of this radius, so a camera passing over sees
+// more than one cell of it.
+constexpr double kFireRadiusM = 8.0;
+// Stands on the launch ring are at least this far apart (centre to centre), m.
+constexpr double kMinStandSpacingM = 4.0;
+constexpr double kMinStandRingM = 5.0;
+constexpr double kMinLinkLostS = 2.0;
+constexpr double kMaxLinkLostS = 600.0;
+
+struct Flags {
+  int count = 1;
+  int first_id = 1;
+  std::string launch;
+  LinkFlags link;
+  std::vector<std::string> fires;
+  std::string camera = "seed";
+  std::uint64_t seed = 1;
+  std::optional<double> duration_s;
+  std::optional<double> link_lost_timeout_s;
+  double speed = 1.0;
+};
+
+[[noreturn]] void BadFlag(const std::string& flag, const std::string& requirement,
+                          const std::string& got) {
+  ThrowBadFlag(kName, flag, requirement, got);
+}
+
+void CheckFlags(const Flags& f, const po::variables_map& values) {
+  CheckLinkFlags(kName, f.link, values);
+  if (f.count < 1 || f.count > kMaxId) BadFlag("count", "in 1..254", std::to_string(f.count));
+  if (f.first_id < 1 || f.first_id + f.count - 1 > kMaxId) {
+    BadFlag("first-id", "in 1..254 with every ID up to first-id + count - 1 <= 254",
+            std::to_string(f.first_id));
+  }
+  if (f.launch.empty()) BadFlag("launch", "given, as LAT,LON in degrees", "");
+  if (!ParseLatLon(f.launch)) BadFlag("launch", "LAT,LON in degrees", f.launch);
+  for (const std::string& fire : f.fires) {
+    if (!ParseLatLon(fire)) BadFlag("fire", "LAT,LON in degrees", fire);
+  }
+  if (common::FindCameraModel(f.camera) == nullptr) {
+    BadFlag("camera", common::CameraModelNames(), f.camera);
+  }
+  if (f.duration_s && !(*f.duration_s > 0.0)) BadFlag("duration-s", "> 0", FlagText(*f.duration_s));
+  if (!(f.speed >= kMinSpeed && f.speed <= kMaxSpeed)) {
+    BadFlag("speed", "in [1, 1000]", FlagText(f.speed));
+  }
+  if (f.link_lost_timeout_s &&
+      !(*f.link_lost_timeout_s >= kMinLinkLostS && *f.link_lost_timeout_s <= kMaxLinkLostS)) {
+    BadFlag("link-lost-timeout-s", "in [2, 600]", FlagText(*f.link_lost_timeout_s));
+  }
+}
+
+// Stands on a ring around the launch site (the world's origin), a few metres
+// apart, the first one north of the site and the others clockwise.
+std::vector<sim2d::Vec2> Stands(int count) {
+  if (count == 1) return {sim2d::Vec2::Zero()};
+  const double n = count;
+  const double ring_m =
+      std::max(kMinStandRingM, kMinStandSpacingM / (2.0 * std::sin(std::numbers::pi / n)));
+  std::vector<sim2d::Vec2> stands;
+  for (int i = 0; i < count; ++i) {
+    const double angle = 2.0 * std::numbers::pi * i / n;  // clockwise from north
+    stands.emplace_back(ring_m * std::sin(angle), ring_m * std::cos(angle));
+  }
+  return stands;
+}
+
+sim2d::SimulationConfig WorldFor(const Flags& f) {
+  const common::LatLon launch = *ParseLatLon(f.launch);
+  const common::LocalFrame frame(launch);
+  sim2d::SimulationConfig config;
+  config.world.seed = f.seed;
+  config.world.origin = launch;
+  config.fire.origin_m = sim2d::Vec2(-kWorldHalfWidthM, -kWorldHalfWidthM);
+  config.fire.width_m = 2.0 * kWorldHalfWidthM;
+  config.fire.height_m = 2.0 * kWorldHalfWidthM;
+  config.fire.cell_size_m = kFireCellM;
+  const std::vector<sim2d::Vec2> stands = Stands(f.count);
+  for (int i = 0; i < f.count; ++i) {
+    sim2d::VehicleConfig vehicle;
+    vehicle.id = f.first_id + i;
+    vehicle.launch_position_m = stands[static_cast<std::size_t>(i)];
+    config.world.vehicles.push_back(vehicle);
+    sim2d::VehicleCamera camera;
+    camera.vehicle_id = vehicle.id;
+    camera.model = f.camera;
+    config.cameras.push_back(camera);
+  }
+  for (const std::string& text : f.fires) {
+    const common::EastNorth at = frame.ToLocal(*ParseLatLon(text));
+    const sim2d::Vec2 centre(at.east_m, at.north_m);
+    if (std::abs(at.east_m) > kWorldHalfWidthM - kFireRadiusM ||
+        std::abs(at.north_m) > kWorldHalfWidthM - kFireRadiusM) {
+      BadFlag("fire", "within 2 km of the launch site", text);
+    }
+    // The centre and every cell centre of the disc, all at t = 0.
+    const int reach = static_cast<int>(std::ceil(kFireRadiusM / kFireCellM));
+    for (int i = -reach; i <= reach; ++i) {
+      for (int j = -reach; j <= reach; ++j) {
+        const sim2d::Vec2 offset(i * kFireCellM, j * kFireCellM);
+        if (offset.norm() > kFireRadiusM) continue;
+        sim2d::Ignition ignition;
+        ignition.position_m = centre + offset;
+        config.ignitions.push_back(ignition);
+      }
+    }
+  }
+  return config;
+}
+
+std::vector<agents::VehicleConfig> VehiclesFor(const Flags& f) {
+  std::vector<agents::VehicleConfig> vehicles;
+  for (int i = 0; i < f.count; ++i) {
+    agents::VehicleConfig config;
+    config.id = static_cast<std::uint8_t>(f.first_id + i);
+    config.radio.id = config.id;
+    config.radio.mode = ModeOf(f.link);
+    config.radio.checksum = ChecksumOf(f.link);
+    config.radio.timing.baud = static_cast<int>(f.link.baud);
+    config.camera = common::CameraModelByName(f.camera);
+    vehicles.push_back(config);
+  }
+  return vehicles;
+}
+
+}  // namespace
+
+int RunSim(const std::vector<std::string>& args) {
+  Flags f;
+  po::options_description options("sim options");
+  auto add = options.add_options();
+  add("count", po::value(&f.count)->default_value(f.count), "vehicles, 1..254");
+  add("first-id", po::value(&f.first_id)->default_value(f.first_id),
+      "receiver ID of the first vehicle; the others follow (first-id + 1, ...)");
+  add("launch", po::value(&f.launch)->value_name("LAT,LON"),
+      "launch site, deg: the vehicles stand a few metres apart around it");
+  AddLinkOptions(options, f.link);
+  add("fire", po::value(&f.fires)->composing()->value_name("LAT,LON"),
+      "ignite a fire there at t = 0 (repeatable), within 2 km of the launch site");
+  const std::string camera_help = "thermal camera of every vehicle: " + common::CameraModelNames();
+  add("camera", po::value(&f.camera)->default_value(f.camera), camera_help.c_str());
+  add("seed", po::value(&f.seed)->default_value(f.seed), "simulation seed");
+  add("speed", po::value(&f.speed)->default_value(f.speed),
+      "run the simulation this many times faster than the wall clock, 1..1000 (the vehicles' "
+      "timers run that much faster than the server's)");
+  add("duration-s", po::value<double>()->notifier([&f](double v) { f.duration_s = v; }),
+      "stop after this much simulated time, s (default: run until SIGINT or SIGTERM)");
+  add("link-lost-timeout-s",
+      po::value<double>()->notifier([&f](double v) { f.link_lost_timeout_s = v; }),
+      "set every vehicle's safety.link_lost_timeout_s parameter, simulated s, 2..600 (default: "
+      "the parameter's default)");
+  po::variables_map values;
+  if (!ParseCommandLine(kName,
+                        "--launch LAT,LON (--udp LOCAL REMOTE | --serial DEVICE) [--count N] "
+                        "[options]",
+                        options, {}, args, values)) {
+    return kExitOk;
+  }
+  CheckFlags(f, values);
+  const sim2d::SimulationConfig world = WorldFor(f);
+
+  const StopOnSignals stop_on_signals;
+  const OpenedLink link = OpenLink(f.link);
+  SimulatedFleet fleet(world, VehiclesFor(f));
+  if (f.link_lost_timeout_s) {
+    for (const auto& vehicle : fleet.vehicles()) {
+      radio::ParamWrite write;
+      write.param_id = static_cast<std::uint16_t>(agents::ParamId::kLinkLostTimeoutS);
+      write.value = static_cast<float>(*f.link_lost_timeout_s);
+      vehicle->OnParamWrite(write);
+    }
+  }
+  if (f.link.print_bound_port) std::cout << "bound_port=" << link.udp->local_port() << std::endl;
+  fleet.Run(*link.link, f.speed,
+            f.duration_s ? std::optional<Nanos>(radio::FromSeconds(*f.duration_s)) : std::nullopt);
+
+  nlohmann::ordered_json summary;
+  summary["sim_seconds"] = fleet.simulation().time_s();
+  summary["wall_seconds"] = fleet.wall_seconds();
+  summary["real_time_factor"] =
+      fleet.wall_seconds() > 0.0 ? fleet.simulation().time_s() / fleet.wall_seconds() : 0.0;
+  summary["vehicles"] = nlohmann::ordered_json::array();
+  for (const auto& vehicle : fleet.vehicles()) {
+    summary["vehicles"].push_back(fleet.VehicleSummary(*vehicle));
+  }
+  std::cout << summary.dump() << std::endl;
+  return kExitOk;
+}
+
+}  // namespace fireswarm::app

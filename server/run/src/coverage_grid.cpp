@@ -1,0 +1,106 @@
+#include <algorithm>
+#include <boost/geometry.hpp>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "scoring.hpp"
+
+namespace fireswarm::run::internal {
+namespace {
+
+namespace bg = boost::geometry;
+
+constexpr double kCoverageCellM = 5.0;
+constexpr double kMaxCoverageCells = 2'000'000.0;
+constexpr double kFarEdgeCapM = 1'000.0;
+/// Below this a flying vehicle is taking off or landing: its camera is not searching.
+constexpr double kMinCoverageAltitudeM = 2.0;
+constexpr double kDegToRad = std::numbers::pi / 180.0;
+constexpr std::uint8_t kOutside = 0;
+constexpr std::uint8_t kUnseen = 1;
+constexpr std::uint8_t kSeen = 2;
+
+}  // namespace
+
+CoverageGrid::CoverageGrid(const planner::SearchArea& area) {
+  planner::Box box;
+  bg::envelope(area.area, box);
+  min_e_ = box.min_corner().x();
+  min_n_ = box.min_corner().y();
+  const double width = box.max_corner().x() - min_e_;
+  const double height = box.max_corner().y() - min_n_;
+  cell_m_ = std::max(kCoverageCellM, std::sqrt(width * height / kMaxCoverageCells));
+  cols_ = std::max(1, static_cast<int>(std::ceil(width / cell_m_)));
+  rows_ = std::max(1, static_cast<int>(std::ceil(height / cell_m_)));
+  state_.assign(static_cast<std::size_t>(cols_) * static_cast<std::size_t>(rows_), kOutside);
+  for (int r = 0; r < rows_; ++r) {
+    for (int c = 0; c < cols_; ++c) {
+      const planner::Point centre(min_e_ + (c + 0.5) * cell_m_, min_n_ + (r + 0.5) * cell_m_);
+      if (bg::covered_by(centre, area.area) && !bg::within(centre, area.no_fly)) {
+        state_[static_cast<std::size_t>(r) * static_cast<std::size_t>(cols_) +
+               static_cast<std::size_t>(c)] = kUnseen;
+        ++searchable_;
+      }
+    }
+  }
+}
+
+void CoverageGrid::Mark(const sim2d::VehicleTruth& truth, const common::CameraModel& camera,
+                        double camera_pitch_deg) {
+  if (truth.phase != sim2d::FlightPhase::kFlying || truth.altitude_m < kMinCoverageAltitudeM) {
+    return;
+  }
+  const double h = truth.altitude_m;
+  const double depression = -camera_pitch_deg * kDegToRad;
+  const double half_v = camera.vfov_deg * kDegToRad / 2.0;
+  // Ground distance ahead of the vehicle of the image's near and far edges
+  // (negative: behind). An edge at or above the horizon is capped.
+  const double near_angle = depression + half_v;
+  const double far_angle = depression - half_v;
+  const double near_m = h / std::tan(near_angle);
+  const double far_m =
+      far_angle > 0.0 ? std::min(h / std::tan(far_angle), kFarEdgeCapM) : kFarEdgeCapM;
+  const double half_w = common::FootprintWidthM(camera, h, camera_pitch_deg) / 2.0;
+  const Eigen::Vector2d forward(std::sin(truth.heading_rad), std::cos(truth.heading_rad));
+  const Eigen::Vector2d right(forward.y(), -forward.x());
+  const Eigen::Vector2d& p = truth.position_m;
+  double lo_e = std::numeric_limits<double>::infinity();
+  double lo_n = lo_e;
+  double hi_e = -lo_e;
+  double hi_n = -lo_e;
+  for (const double along : {near_m, far_m}) {
+    for (const double across : {-half_w, half_w}) {
+      const Eigen::Vector2d corner = p + along * forward + across * right;
+      lo_e = std::min(lo_e, corner.x());
+      hi_e = std::max(hi_e, corner.x());
+      lo_n = std::min(lo_n, corner.y());
+      hi_n = std::max(hi_n, corner.y());
+    }
+  }
+  const auto col = [&](double e) { return static_cast<int>(std::floor((e - min_e_) / cell_m_)); };
+  const auto row = [&](double n) { return static_cast<int>(std::floor((n - min_n_) / cell_m_)); };
+  const int c0 = std::max(0, col(lo_e));
+  const int c1 = std::min(cols_ - 1, col(hi_e));
+  const int r0 = std::max(0, row(lo_n));
+  const int r1 = std::min(rows_ - 1, row(hi_n));
+  for (int r = r0; r <= r1; ++r) {
+    for (int c = c0; c <= c1; ++c) {
+      std::uint8_t& cell = state_[static_cast<std::size_t>(r) * static_cast<std::size_t>(cols_) +
+                                  static_cast<std::size_t>(c)];
+      if (cell != kUnseen) continue;
+      const Eigen::Vector2d d =
+          Eigen::Vector2d(min_e_ + (c + 0.5) * cell_m_, min_n_ + (r + 0.5) * cell_m_) - p;
+      const double along = d.dot(forward);
+      if (along < near_m || along > far_m || std::abs(d.dot(right)) > half_w) continue;
+      cell = kSeen;
+      ++seen_;
+    }
+  }
+}
+
+double CoverageGrid::Fraction() const {
+  return searchable_ == 0 ? 0.0 : static_cast<double>(seen_) / static_cast<double>(searchable_);
+}
+
+}  // namespace fireswarm::run::internal

@@ -1,0 +1,101 @@
+#include "fireswarm/run/report_json.hpp"
+
+#include <cmath>
+#include <string>
+
+namespace fireswarm::run {
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+Json Number(double value) {
+  return std::isfinite(value) ? Json(value) : Json(nullptr);
+}
+
+Json Optional(const std::optional<double>& value) {
+  return value ? Number(*value) : Json(nullptr);
+}
+
+Json FireJson(const FireOutcome& fire) {
+  Json j;
+  j["true_lat"] = fire.truth.lat_deg;
+  j["true_lon"] = fire.truth.lon_deg;
+  j["fused_lat"] = fire.fused ? Json(fire.fused->lat_deg) : Json(nullptr);
+  j["fused_lon"] = fire.fused ? Json(fire.fused->lon_deg) : Json(nullptr);
+  j["error_m"] = Optional(fire.error_m);
+  j["first_report_s"] = Optional(fire.first_report_s);
+  j["confirmed_s"] = Optional(fire.confirmed_s);
+  j["vehicles"] = fire.vehicles;
+  return j;
+}
+
+Json RadioJson(const RadioOutcome& radio) {
+  Json j;
+  j["busy_fraction"] = Number(radio.busy_fraction);
+  Json ages = Json::object();
+  for (const auto& [id, p50_p99] : radio.telemetry_age_p50_p99_s) {
+    ages[std::to_string(id)] = {{"p50", Number(p50_p99.first)}, {"p99", Number(p50_p99.second)}};
+  }
+  j["telemetry_age_s"] = ages;
+  j["retries"] = radio.retries;
+  j["report_latency_s"] = {{"p50", Optional(radio.report_latency_p50_s)},
+                           {"p99", Optional(radio.report_latency_p99_s)}};
+  j["reports_lost"] = radio.reports_lost;
+  return j;
+}
+
+}  // namespace
+
+nlohmann::ordered_json ToJson(const Report& report) {
+  Json j;
+  Json fires = Json::array();
+  for (const FireOutcome& fire : report.fires) fires.push_back(FireJson(fire));
+  j["fires"] = fires;
+  Json false_tracks = Json::array();
+  for (const FalseTrack& track : report.false_tracks) {
+    false_tracks.push_back({{"track_id", track.track_id},
+                            {"lat", track.position.lat_deg},
+                            {"lon", track.position.lon_deg},
+                            {"confirmed_s", Number(track.confirmed_s)},
+                            {"vehicles", track.vehicles}});
+  }
+  j["false_tracks"] = false_tracks;
+  j["coverage"] = Number(report.coverage);
+  Json series = Json::array();
+  for (const auto& [t_s, fraction] : report.coverage_over_time) {
+    series.push_back(Json::array({Number(t_s), Number(fraction)}));
+  }
+  j["coverage_over_time"] = series;
+  Json collisions = Json::array();
+  for (const Collision& c : report.collisions) {
+    collisions.push_back({{"t_s", c.t_s},
+                          {"vehicle_a", c.vehicle_a},
+                          {"vehicle_b", c.vehicle_b},
+                          {"lat", c.position.lat_deg},
+                          {"lon", c.position.lon_deg}});
+  }
+  j["collisions"] = collisions;
+  j["min_separation_m"] = Optional(report.min_separation_m);
+  j["radio"] = RadioJson(report.radio);
+  Json vehicles = Json::object();
+  for (const auto& [id, vehicle] : report.vehicles) {
+    vehicles[std::to_string(id)] = {{"distance_m", Number(vehicle.distance_m)},
+                                    {"battery_used", Number(vehicle.battery_used)},
+                                    {"final_state", vehicle.final_state}};
+  }
+  j["vehicles"] = vehicles;
+  j["sim_seconds"] = Number(report.sim_seconds);
+  j["wall_seconds"] = Number(report.wall_seconds);
+  j["real_time_factor"] = Number(report.real_time_factor);
+  Json expect = Json::array();
+  for (const ExpectOutcome& e : report.expect) {
+    expect.push_back({{"name", e.name},
+                      {"value", Number(e.value)},
+                      {"limit", Number(e.limit)},
+                      {"verdict", e.passed ? "pass" : "fail"}});
+  }
+  j["expect"] = expect;
+  return j;
+}
+
+}  // namespace fireswarm::run

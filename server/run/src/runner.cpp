@@ -1,0 +1,327 @@
+#include "fireswarm/run/runner.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <limits>
+#include <map>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "fireswarm/agents/params.hpp"
+#include "fireswarm/agents/vehicle.hpp"
+#include "fireswarm/hil/sim_bridge.hpp"
+#include "fireswarm/planner/plan.hpp"
+#include "fireswarm/radio/channel.hpp"
+#include "fireswarm/radio/link.hpp"
+#include "fireswarm/server/mission_manager.hpp"
+#include "fireswarm/server/server.hpp"
+#include "fireswarm/sim2d/simulation.hpp"
+#include "scoring.hpp"
+#include "world_setup.hpp"
+
+namespace fireswarm::run {
+namespace {
+
+using radio::Nanos;
+
+constexpr std::uint16_t kMissionId = 1;
+/// Mixed into the scenario seed for the radio channel's own generator, so the
+/// channel's losses do not repeat sim2d's draws.
+constexpr std::uint64_t kChannelSeedSalt = 0x9e3779b97f4a7c15ULL;
+/// Every vehicle down this long (several telemetry periods) ends the run, s.
+constexpr double kSettleS = 5.0;
+
+// A time window in which a vehicle's radio is dead: radio_silent faults, and a
+// total loss from its time on (the vehicle is gone).
+struct SilentWindow {
+  double from_s = 0.0;
+  double until_s = 0.0;
+};
+
+struct FlyingVehicle {
+  std::unique_ptr<agents::Vehicle> vehicle;
+  radio::SimLink link;
+  std::vector<SilentWindow> silent;
+
+  bool SilentAt(double t_s) const {
+    return std::ranges::any_of(
+        silent, [&](const SilentWindow& w) { return w.from_s <= t_s && t_s < w.until_s; });
+  }
+};
+
+server::ServerConfig MakeServerConfig(const Scenario& scenario) {
+  server::ServerConfig config;
+  config.radio.mode = scenario.radio.mode;
+  config.radio.checksum = scenario.radio.checksum;
+  config.radio.timing.baud = scenario.radio.baud;
+  config.radio.timing.turnaround = std::chrono::duration_cast<Nanos>(
+      std::chrono::duration<double, std::milli>(scenario.radio.turnaround_ms));
+  return config;
+}
+
+radio::ChannelConfig MakeChannelConfig(const Scenario& scenario, const radio::LinkTiming& timing) {
+  radio::ChannelConfig config;
+  config.baud = timing.baud;
+  config.bits_per_byte = timing.bits_per_byte;
+  config.turnaround = timing.turnaround;
+  config.loss = scenario.radio.loss;
+  return config;
+}
+
+std::vector<SilentWindow> SilentWindowsOf(const Scenario& scenario, int id) {
+  std::vector<SilentWindow> out;
+  for (const FaultSpec& fault : scenario.faults) {
+    if (fault.vehicle != id) continue;
+    if (fault.kind == FaultKind::kRadioSilent)
+      out.push_back({fault.at_s, fault.at_s + fault.duration_s});
+    if (fault.kind == FaultKind::kTotalLoss) {
+      out.push_back({fault.at_s, std::numeric_limits<double>::infinity()});
+    }
+  }
+  return out;
+}
+
+// Plans and turns the plan into the missions the vehicles fly. Planner refusals
+// are bad input: they name the scenario file.
+std::vector<server::DroneMission> PlanMissions(const Scenario& scenario) {
+  try {
+    const planner::Plan plan =
+        planner::PlanSearch(scenario.area, MakeFleetSpec(scenario), scenario.fleet.planner,
+                            static_cast<unsigned>(scenario.seed));
+    return internal::InAltitudeLayers(internal::WithoutLaunchSite(
+        scenario, server::ToDroneMissions(plan, kMissionId, scenario.fleet.altitude_m,
+                                          scenario.fleet.speed_mps)));
+  } catch (const std::invalid_argument& e) {
+    throw ScenarioError(scenario.source + ": fleet: the planner refused it: " + e.what());
+  } catch (const std::runtime_error& e) {
+    throw ScenarioError(scenario.source + ": fleet: the planner refused it: " + e.what());
+  }
+}
+
+// Everything of one run, stepped together.
+class Lockstep {
+ public:
+  Lockstep(const Scenario& scenario, const std::vector<FireSpec>& fires,
+           const std::vector<server::DroneMission>& missions)
+      : simulation_(internal::MakeSimulationConfig(scenario, fires,
+                                                   internal::StandPositions(scenario, missions))),
+        fleet_(simulation_),
+        server_config_(MakeServerConfig(scenario)),
+        channel_(MakeChannelConfig(scenario, server_config_.radio.timing),
+                 scenario.seed ^ kChannelSeedSalt),
+        server_link_(channel_, channel_.AddRadio()),
+        server_(server_config_, scenario.area.frame) {
+    for (const int id : scenario.fleet.ReceiverIds()) {
+      agents::VehicleConfig config;
+      config.id = static_cast<std::uint8_t>(id);
+      config.radio.id = config.id;
+      config.radio.mode = server_config_.radio.mode;
+      config.radio.checksum = server_config_.radio.checksum;
+      config.radio.timing = server_config_.radio.timing;
+      config.camera = *scenario.fleet.camera;
+      auto vehicle = std::make_unique<agents::Vehicle>(config);
+      // The mount pitch is a parameter (the seed's EEPROM), set before the flight.
+      radio::ParamWrite pitch;
+      pitch.param_id = static_cast<std::uint16_t>(agents::ParamId::kCameraPitchDeg);
+      pitch.value = static_cast<float>(scenario.fleet.camera_pitch_deg);
+      vehicle->OnParamWrite(pitch);
+      fleet_.Add(*vehicle);
+      server_.AddVehicle(id);
+      vehicles_.push_back(FlyingVehicle{std::move(vehicle),
+                                        radio::SimLink(channel_, channel_.AddRadio()),
+                                        SilentWindowsOf(scenario, id)});
+    }
+    server_.LoadMission(missions);
+    std::string why;
+    if (!server_.Handle(server::OperatorCommand{}, Nanos{0}, &why)) {
+      throw std::logic_error("runner: the server refused to start the mission: " + why);
+    }
+  }
+
+  /// One lockstep step: sim2d and the vehicles, then the radio and the server up
+  /// to the step's end.
+  void Step() {
+    fleet_.Step();
+    RunRadioUntil(fleet_.now());
+  }
+
+  double time_s() const { return simulation_.time_s(); }
+  const sim2d::World& world() const { return simulation_.world(); }
+  const sim2d::Simulation& simulation() const { return simulation_; }
+  const server::Server& server() const { return server_; }
+  const radio::SharedChannel& channel() const { return channel_; }
+  const std::vector<FlyingVehicle>& vehicles() const { return vehicles_; }
+
+  std::size_t PendingReports() const {
+    std::size_t pending = 0;
+    for (const FlyingVehicle& v : vehicles_) pending += v.vehicle->endpoint().pending_reports();
+    return pending;
+  }
+
+  /// What the scorer needs at the end besides the world and the server.
+  internal::FinalState Final() const {
+    internal::FinalState out;
+    out.sim_seconds = time_s();
+    out.radio_busy_s = radio::ToSeconds(channel_.stats().busy);
+    for (const FlyingVehicle& v : vehicles_) {
+      // A vehicle the simulator lost or crashed is that, whatever its software says.
+      const sim2d::FlightPhase phase = world().Truth(v.vehicle->id()).phase;
+      std::string state = internal::FlightModeName(v.vehicle->mode());
+      if (phase == sim2d::FlightPhase::kLost) state = "lost";
+      if (phase == sim2d::FlightPhase::kCrashed) state = "crashed";
+      out.modes[v.vehicle->id()] = state;
+      out.reports_queued += v.vehicle->endpoint().stats().reports_queued;
+    }
+    return out;
+  }
+
+  /// Every vehicle landed after flying, crashed or lost.
+  bool AllDown() const {
+    return std::ranges::all_of(vehicles_, [&](const FlyingVehicle& v) {
+      const sim2d::FlightPhase phase = world().Truth(v.vehicle->id()).phase;
+      return phase == sim2d::FlightPhase::kCrashed || phase == sim2d::FlightPhase::kLost ||
+             (phase == sim2d::FlightPhase::kOnGround &&
+              v.vehicle->mode() == radio::FlightMode::kLanded);
+    });
+  }
+
+ private:
+  // The reference event loop of tests/hil/hil_test_helpers.hpp (GroundLink::RunUntil)
+  // with server::Server as the master, and silent vehicles cut off both ways.
+  void RunRadioUntil(Nanos end) {
+    std::vector<std::uint8_t> bytes;
+    while (true) {
+      // A request queued between calls makes the server due at once, which may be
+      // before where the channel's time already is.
+      const Nanos t =
+          std::max(channel_.now(),
+                   std::min(server_.NextWakeup(), channel_.NextEventTime().value_or(Nanos::max())));
+      if (t > end) break;
+      channel_.AdvanceTo(t);
+      bytes.clear();
+      server_link_.Receive(t, bytes);
+      for (const radio::Burst& burst : server_.Step(t, bytes)) {
+        server_link_.Transmit(t, burst.start, burst.bytes);
+      }
+      const double t_s = radio::ToSeconds(t);
+      for (FlyingVehicle& v : vehicles_) {
+        bytes.clear();
+        v.link.Receive(t, bytes);
+        if (bytes.empty() || v.SilentAt(t_s)) continue;
+        for (const radio::Burst& burst : v.vehicle->OnRadio(t, bytes)) {
+          v.link.Transmit(t, burst.start, burst.bytes);
+        }
+      }
+    }
+    channel_.AdvanceTo(std::max(end, channel_.now()));
+  }
+
+  sim2d::Simulation simulation_;
+  hil::LockstepFleet fleet_;
+  server::ServerConfig server_config_;
+  radio::SharedChannel channel_;
+  radio::SimLink server_link_;
+  server::Server server_;
+  std::vector<FlyingVehicle> vehicles_;
+};
+
+// When to end a run before its duration: the mission is complete (or aborted) and
+// no report waits on a vehicle, or every vehicle is down for a few telemetry turns
+// (the server then sees the landings); either way at most drain_s later.
+class StopRule {
+ public:
+  explicit StopRule(const RunOptions& options) : drain_s_(options.drain_s) {}
+
+  std::optional<StopReason> Check(double t_s, const Lockstep& run) {
+    const server::MissionState state = run.server().state();
+    if (state == server::MissionState::kComplete || state == server::MissionState::kAborted) {
+      if (!complete_at_s_) complete_at_s_ = t_s;
+      if (run.PendingReports() == 0 || t_s - *complete_at_s_ >= drain_s_) {
+        return StopReason::kMissionComplete;
+      }
+      return std::nullopt;
+    }
+    if (!run.AllDown()) {
+      down_at_s_.reset();
+      return std::nullopt;
+    }
+    if (!down_at_s_) down_at_s_ = t_s;
+    const double down_s = t_s - *down_at_s_;
+    if ((down_s >= kSettleS && run.PendingReports() == 0) || down_s >= drain_s_) {
+      return StopReason::kAllDown;
+    }
+    return std::nullopt;
+  }
+
+ private:
+  double drain_s_;
+  std::optional<double> complete_at_s_;
+  std::optional<double> down_at_s_;
+};
+
+}  // namespace
+
+const char* ToString(StopReason reason) {
+  switch (reason) {
+    case StopReason::kDuration:
+      return "duration";
+    case StopReason::kMissionComplete:
+      return "mission_complete";
+    case StopReason::kAllDown:
+      return "all_down";
+  }
+  return "unknown";
+}
+
+RunResult RunScenario(const Scenario& scenario, const RunOptions& options) {
+  const auto wall_start = std::chrono::steady_clock::now();
+  const std::vector<FireSpec> fires = internal::ExpandFires(scenario);
+  const std::vector<server::DroneMission> missions = PlanMissions(scenario);
+  Lockstep run(scenario, fires, missions);
+
+  internal::Scorer scorer(scenario, fires);
+
+  RunResult result;
+  StopRule stop(options);
+  double next_progress_s = 0.0;
+  const auto report_progress = [&] {
+    if (!options.progress) return;
+    RunProgress progress;
+    progress.sim_s = run.time_s();
+    progress.duration_s = scenario.duration_s;
+    progress.coverage = scorer.coverage();
+    progress.fires_confirmed = scorer.confirmed_tracks();
+    progress.fires_total = fires.size();
+    options.progress(progress);
+  };
+  constexpr double kEps = 1e-9;
+  while (run.time_s() < scenario.duration_s - kEps) {
+    run.Step();
+    const double t_s = run.time_s();
+    scorer.Observe(t_s, run.simulation(), run.server());
+    if (t_s + kEps >= next_progress_s) {
+      report_progress();
+      next_progress_s += options.progress_interval_s;
+    }
+    if (const std::optional<StopReason> reason = stop.Check(t_s, run)) {
+      result.stop = *reason;
+      break;
+    }
+  }
+  report_progress();
+
+  const internal::FinalState final_state = run.Final();
+  result.report = scorer.Finish(run.world(), run.server(), final_state);
+  result.state_hash = run.simulation().StateHash();
+  result.mission_state = server::ToString(run.server().state());
+  const double wall_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  result.report.wall_seconds = wall_s;
+  result.report.real_time_factor = wall_s > 0.0 ? result.report.sim_seconds / wall_s : 0.0;
+  return result;
+}
+
+}  // namespace fireswarm::run

@@ -1,0 +1,292 @@
+#include "scoring.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+namespace fireswarm::run::internal {
+namespace {
+
+constexpr double kCoverageSampleS = 0.5;
+constexpr double kCoverageSeriesS = 10.0;
+constexpr double kSeparationSampleS = 0.05;
+constexpr double kTrackSampleS = 5.0;
+
+bool Flying(const sim2d::VehicleTruth& truth) {
+  return truth.phase == sim2d::FlightPhase::kFlying;
+}
+
+common::LatLon ToLatLon(const common::LocalFrame& frame, const Eigen::Vector2d& east_north) {
+  return frame.ToGeodetic({east_north.x(), east_north.y()});
+}
+
+std::vector<int> ToInts(const std::vector<std::uint8_t>& ids) {
+  return std::vector<int>(ids.begin(), ids.end());
+}
+
+// True when a fire cell within kOnFireM of `position_m` had ignited by `t_s`.
+bool OnFire(const sim2d::FireGrid& grid, const sim2d::Vec2& position_m, double t_s) {
+  const double cell_m = grid.config().cell_size_m;
+  const int reach = static_cast<int>(std::ceil(kOnFireM / cell_m));
+  const std::optional<sim2d::CellIndex> centre = grid.CellAt(position_m);
+  if (!centre) return false;
+  for (int dr = -reach; dr <= reach; ++dr) {
+    for (int dc = -reach; dc <= reach; ++dc) {
+      const sim2d::CellIndex cell{centre->col + dc, centre->row + dr};
+      if (cell.col < 0 || cell.row < 0 || cell.col >= grid.cols() || cell.row >= grid.rows()) {
+        continue;
+      }
+      if ((grid.CellCenter(cell) - position_m).norm() > kOnFireM + cell_m / 2.0) continue;
+      const std::optional<double> ignited_s = grid.IgnitionTimeS(cell);
+      if (ignited_s && *ignited_s <= t_s) return true;
+    }
+  }
+  return false;
+}
+
+}  // namespace
+
+double Percentile(std::vector<double> values, double p) {
+  std::sort(values.begin(), values.end());
+  const double rank = std::ceil(p * static_cast<double>(values.size()));
+  const auto index = static_cast<std::size_t>(std::max(rank, 1.0)) - 1;
+  return values[std::min(index, values.size() - 1)];
+}
+
+std::string FlightModeName(radio::FlightMode mode) {
+  switch (mode) {
+    case radio::FlightMode::kIdle:
+      return "idle";
+    case radio::FlightMode::kTakeoff:
+      return "takeoff";
+    case radio::FlightMode::kSearch:
+      return "search";
+    case radio::FlightMode::kInvestigate:
+      return "investigate";
+    case radio::FlightMode::kReturnToLaunch:
+      return "return_to_launch";
+    case radio::FlightMode::kLand:
+      return "land";
+    case radio::FlightMode::kLanded:
+      return "landed";
+    case radio::FlightMode::kHold:
+      return "hold";
+  }
+  return "unknown";
+}
+
+Scorer::Scorer(const Scenario& scenario, std::vector<FireSpec> fires)
+    : scenario_(scenario), fires_(std::move(fires)), coverage_(scenario.area) {
+  for (const int id : scenario.fleet.ReceiverIds()) traces_[id] = VehicleTrace{};
+}
+
+void Scorer::Observe(double t_s, const sim2d::Simulation& simulation,
+                     const server::Server& server) {
+  constexpr double kEps = 1e-9;
+  const sim2d::World& world = simulation.world();
+  ++steps_;
+  for (const sim2d::VehicleTruth& truth : world.Truths()) {
+    VehicleTrace& trace = traces_[truth.id];
+    if (trace.last_position_m) {
+      const double dh = (truth.position_m - *trace.last_position_m).norm();
+      const double dv = truth.altitude_m - trace.last_altitude_m;
+      trace.distance_m += std::hypot(dh, dv);
+    }
+    trace.last_position_m = truth.position_m;
+    trace.last_altitude_m = truth.altitude_m;
+  }
+  if (t_s + kEps >= next_coverage_s_) {
+    next_coverage_s_ += kCoverageSampleS;
+    for (const sim2d::VehicleTruth& truth : world.Truths()) {
+      coverage_.Mark(truth, *scenario_.fleet.camera, scenario_.fleet.camera_pitch_deg);
+    }
+  }
+  if (t_s + kEps >= next_series_s_) {
+    coverage_over_time_.emplace_back(t_s, coverage_.Fraction());
+    next_series_s_ += kCoverageSeriesS;
+  }
+  if (t_s + kEps >= next_track_s_) {
+    next_track_s_ += kTrackSampleS;
+    for (const sim2d::VehicleTruth& truth : world.Truths()) {
+      traces_[truth.id].track.push_back(ToLatLon(world.frame(), truth.position_m));
+    }
+  }
+  if (t_s + kEps >= next_second_s_) {
+    next_second_s_ += 1.0;
+    for (const sim2d::VehicleTruth& truth : world.Truths()) {
+      if (!Flying(truth)) continue;
+      const auto id = static_cast<std::uint8_t>(truth.id);
+      if (!server.registry().Contains(id)) continue;
+      if (const std::optional<double> age = server.registry().TelemetryAgeS(id, t_s)) {
+        traces_[truth.id].telemetry_ages_s.push_back(*age);
+      }
+    }
+  }
+  ObserveSeparation(world);
+  ObserveCollisions(world);
+  for (const server::FireTrack& track : server.fusion().tracks()) {
+    if (track.status != server::FireTrackStatus::kConfirmed ||
+        confirmed_.contains(track.track_id)) {
+      continue;
+    }
+    // Tracks are (north, east).
+    const sim2d::Vec2 position(track.position_ne_m.y(), track.position_ne_m.x());
+    confirmed_[track.track_id] = Confirmation{t_s, OnFire(simulation.fire(), position, t_s)};
+  }
+}
+
+void Scorer::ObserveSeparation(const sim2d::World& world) {
+  const auto stride = std::max<std::int64_t>(1, std::llround(kSeparationSampleS / world.step_s()));
+  if (steps_ % stride != 0) return;
+  const std::span<const sim2d::VehicleTruth> truths = world.Truths();
+  for (std::size_t i = 0; i < truths.size(); ++i) {
+    if (!Flying(truths[i])) continue;
+    for (std::size_t j = i + 1; j < truths.size(); ++j) {
+      if (!Flying(truths[j])) continue;
+      const double dh = (truths[i].position_m - truths[j].position_m).norm();
+      const double d = std::hypot(dh, truths[i].altitude_m - truths[j].altitude_m);
+      if (!separation_seen_ || d < min_separation_m_) min_separation_m_ = d;
+      separation_seen_ = true;
+    }
+  }
+}
+
+void Scorer::ObserveCollisions(const sim2d::World& world) {
+  const std::vector<sim2d::WorldEvent>& events = world.events();
+  for (; events_seen_ < events.size(); ++events_seen_) {
+    const sim2d::WorldEvent& event = events[events_seen_];
+    if (event.kind != sim2d::EventKind::kCollision) continue;
+    Collision collision;
+    collision.t_s = event.time_s;
+    collision.vehicle_a = event.vehicle_a;
+    collision.vehicle_b = event.vehicle_b;
+    const Eigen::Vector2d middle =
+        (world.Truth(event.vehicle_a).position_m + world.Truth(event.vehicle_b).position_m) / 2.0;
+    collision.position = ToLatLon(world.frame(), middle);
+    collisions_.push_back(collision);
+  }
+}
+
+void Scorer::ScoreFires(const server::Server& server, Report& report) const {
+  const common::LocalFrame& frame = scenario_.area.frame;
+  for (const FireSpec& fire : fires_) {
+    FireOutcome outcome;
+    outcome.truth = fire.position;
+    outcome.start_s = fire.start_s;
+    report.fires.push_back(outcome);
+  }
+  // Confirmed tracks in the order they were confirmed (ties by track ID).
+  std::vector<std::pair<double, std::int32_t>> order;
+  for (const auto& [id, confirmation] : confirmed_) order.emplace_back(confirmation.t_s, id);
+  std::sort(order.begin(), order.end());
+  for (const auto& [confirmed_s, track_id] : order) {
+    const server::FireTrack* track = server.fusion().Find(track_id);
+    if (track == nullptr) continue;
+    // The nearest fire that had started by the confirmation.
+    std::optional<std::size_t> nearest;
+    double nearest_m = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < fires_.size(); ++i) {
+      if (fires_[i].start_s > confirmed_s) continue;
+      const common::EastNorth truth = frame.ToLocal(fires_[i].position);
+      // Tracks are (north, east).
+      const double d = std::hypot(track->position_ne_m.x() - truth.north_m,
+                                  track->position_ne_m.y() - truth.east_m);
+      if (d < nearest_m) {
+        nearest_m = d;
+        nearest = i;
+      }
+    }
+    const bool real =
+        nearest && (nearest_m <= kFireMatchRadiusM || confirmed_.at(track_id).on_fire);
+    const common::LatLon fused =
+        frame.ToGeodetic({track->position_ne_m.y(), track->position_ne_m.x()});
+    if (!real) {
+      FalseTrack false_track;
+      false_track.track_id = track_id;
+      false_track.position = fused;
+      false_track.confirmed_s = confirmed_s;
+      false_track.vehicles = ToInts(track->vehicle_ids);
+      report.false_tracks.push_back(false_track);
+      continue;
+    }
+    FireOutcome& outcome = report.fires[*nearest];
+    if (outcome.fused) continue;  // a duplicate track of a fire already matched
+    outcome.fused = fused;
+    outcome.error_m = nearest_m;
+    outcome.first_report_s = track->first_seen_s;
+    outcome.confirmed_s = confirmed_s;
+    outcome.vehicles = ToInts(track->vehicle_ids);
+    const Eigen::Matrix2d& p = track->covariance_ne_m2;
+    outcome.covariance_ne_m2 = std::array<double, 3>{p(0, 0), p(0, 1), p(1, 1)};
+  }
+}
+
+void Scorer::ScoreRadio(const server::Server& server, const FinalState& final_state,
+                        Report& report) const {
+  RadioOutcome& radio = report.radio;
+  radio.busy_fraction =
+      final_state.sim_seconds > 0.0 ? final_state.radio_busy_s / final_state.sim_seconds : 0.0;
+  for (const auto& [id, trace] : traces_) {
+    if (trace.telemetry_ages_s.empty()) continue;
+    radio.telemetry_age_p50_p99_s[id] = {Percentile(trace.telemetry_ages_s, 0.5),
+                                         Percentile(trace.telemetry_ages_s, 0.99)};
+  }
+  radio.retries = server.scheduler().stats().retries;
+  // Detection times of every report the fusion holds, by (vehicle, report ID).
+  std::map<std::pair<std::uint8_t, std::uint16_t>, double> detected_s;
+  for (const server::FireTrack& track : server.fusion().tracks()) {
+    for (const server::FireObservation& o : track.reports) {
+      detected_s[{o.vehicle_id, o.report_id}] = o.detection_time_s;
+    }
+  }
+  std::vector<double> latencies;
+  for (const auto& [key, received_s] : server.report_receipts()) {
+    const auto found = detected_s.find(key);
+    if (found != detected_s.end()) latencies.push_back(std::max(0.0, received_s - found->second));
+  }
+  if (!latencies.empty()) {
+    radio.report_latency_p50_s = Percentile(latencies, 0.5);
+    radio.report_latency_p99_s = Percentile(latencies, 0.99);
+  }
+  radio.reports_sent = final_state.reports_queued;
+  radio.reports_received = server.report_receipts().size();
+  radio.reports_lost =
+      radio.reports_sent > radio.reports_received ? radio.reports_sent - radio.reports_received : 0;
+}
+
+Report Scorer::Finish(const sim2d::World& world, const server::Server& server,
+                      const FinalState& final_state) {
+  Report report;
+  report.scenario = scenario_.name;
+  report.seed = scenario_.seed;
+  ScoreFires(server, report);
+  report.coverage = coverage_.Fraction();
+  report.coverage_over_time = coverage_over_time_;
+  if (report.coverage_over_time.empty() ||
+      report.coverage_over_time.back().first < final_state.sim_seconds) {
+    report.coverage_over_time.emplace_back(final_state.sim_seconds, report.coverage);
+  }
+  report.collisions = collisions_;
+  const double world_min = world.min_separation_m();
+  if (separation_seen_) report.min_separation_m = min_separation_m_;
+  if (std::isfinite(world_min)) {
+    report.min_separation_m = std::min(report.min_separation_m.value_or(world_min), world_min);
+  }
+  ScoreRadio(server, final_state, report);
+  for (const auto& [id, trace] : traces_) {
+    VehicleOutcome vehicle;
+    vehicle.distance_m = trace.distance_m;
+    vehicle.battery_used = 1.0 - world.Truth(id).battery_fraction;
+    const auto mode = final_state.modes.find(id);
+    vehicle.final_state = mode != final_state.modes.end() ? mode->second : "unknown";
+    vehicle.track = trace.track;
+    vehicle.track.push_back(ToLatLon(world.frame(), world.Truth(id).position_m));
+    report.vehicles[id] = vehicle;
+  }
+  report.sim_seconds = final_state.sim_seconds;
+  report.expect = EvaluateExpectations(scenario_.expect, report);
+  return report;
+}
+
+}  // namespace fireswarm::run::internal

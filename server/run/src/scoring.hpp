@@ -1,0 +1,135 @@
+// Scoring a run against the simulator's truth: the only code of fireswarm that
+// reads truth and the server's results side by side. Private to the runner.
+//
+// The runner calls Observe() after every lockstep step and Finish() once at the
+// end (scoring.cpp; the coverage raster in coverage_grid.cpp, the `expect`
+// checks in expectations.cpp). Approximations (documented in docs/scenario.md's report section):
+//  * coverage: the search area (area minus no-fly zones) is rasterised in square
+//    cells (5 m, coarser when the area would need more than kMaxCoverageCells);
+//    every 0.5 s of simulated time each airborne vehicle marks the cells whose
+//    centres lie in its camera's ground footprint, a rectangle around the ground
+//    point under the camera's optical axis: across the track the camera's
+//    near-edge width (common::FootprintWidthM), along it from the near to the far
+//    edge of the vertical field of view (far edge capped at 1 km for cameras
+//    looking near the horizon), computed for level flight at the TRUE position,
+//    altitude and heading (roll and pitch of the body are ignored).
+//  * min_separation_m: the smallest 3D distance between two flying vehicles,
+//    sampled every 50 ms, and sim2d's exact near-miss minimum.
+//  * fires: a confirmed track matches the nearest true fire that had started,
+//    within kFireMatchRadiusM of its ignition point; the first confirmed track
+//    matched to a fire is its fused position (error_m: to the ignition point, so
+//    a fire spreading in the wind adds its drift). A confirmed track farther out
+//    that lies within kOnFireM of a fire cell that had ignited when it was
+//    confirmed is on the spread of a real fire: it is fused position of the
+//    nearest fire if that has none yet, otherwise a duplicate; never false.
+//    Confirmed tracks on no fire are false.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <vector>
+
+#include "fireswarm/run/report.hpp"
+#include "fireswarm/run/scenario.hpp"
+#include "fireswarm/server/server.hpp"
+#include "fireswarm/sim2d/simulation.hpp"
+
+namespace fireswarm::run::internal {
+
+inline constexpr double kFireMatchRadiusM = 30.0;
+/// A confirmed track this close to an ignited fire cell is on a real fire, m.
+inline constexpr double kOnFireM = 10.0;
+
+/// The search area rasterised, with the cells a camera has seen.
+class CoverageGrid {
+ public:
+  explicit CoverageGrid(const planner::SearchArea& area);
+  /// Marks what a camera (model, mount pitch from the horizon) on a vehicle at
+  /// `truth` sees, flying level. Nothing when the vehicle is not flying.
+  void Mark(const sim2d::VehicleTruth& truth, const common::CameraModel& camera,
+            double camera_pitch_deg);
+  /// Seen cells / searchable cells, 0 when the area has none.
+  double Fraction() const;
+  double cell_m() const { return cell_m_; }
+
+ private:
+  double min_e_ = 0.0;
+  double min_n_ = 0.0;
+  double cell_m_ = 5.0;
+  int cols_ = 0;
+  int rows_ = 0;
+  std::vector<std::uint8_t> state_;  // 0 outside, 1 searchable unseen, 2 seen
+  std::size_t searchable_ = 0;
+  std::size_t seen_ = 0;
+};
+
+/// What the runner hands over at the end besides the world and the server.
+struct FinalState {
+  double sim_seconds = 0.0;
+  double radio_busy_s = 0.0;         ///< channel airtime, overlaps once
+  std::map<int, std::string> modes;  ///< receiver ID -> flight mode name
+  std::uint64_t reports_queued = 0;  ///< fire reports the vehicles queued
+};
+
+class Scorer {
+ public:
+  Scorer(const Scenario& scenario, std::vector<FireSpec> fires);
+
+  /// After each lockstep step at simulated time `t_s`.
+  void Observe(double t_s, const sim2d::Simulation& simulation, const server::Server& server);
+
+  double coverage() const { return coverage_.Fraction(); }
+  /// Confirmed tracks so far (for the progress line).
+  std::size_t confirmed_tracks() const { return confirmed_.size(); }
+
+  /// The report (wall-clock fields left 0 for the caller), expectations evaluated.
+  Report Finish(const sim2d::World& world, const server::Server& server,
+                const FinalState& final_state);
+
+ private:
+  struct VehicleTrace {
+    double distance_m = 0.0;
+    std::optional<sim2d::Vec2> last_position_m;
+    double last_altitude_m = 0.0;
+    std::vector<common::LatLon> track;
+    std::vector<double> telemetry_ages_s;
+  };
+
+  void ObserveSeparation(const sim2d::World& world);
+  void ObserveCollisions(const sim2d::World& world);
+  void ScoreFires(const server::Server& server, Report& report) const;
+  void ScoreRadio(const server::Server& server, const FinalState& final_state,
+                  Report& report) const;
+
+  const Scenario& scenario_;
+  std::vector<FireSpec> fires_;
+  CoverageGrid coverage_;
+  std::vector<std::pair<double, double>> coverage_over_time_;
+  std::map<int, VehicleTrace> traces_;
+  struct Confirmation {
+    double t_s = 0.0;
+    bool on_fire = false;  // near a fire cell that had ignited by then
+  };
+  std::map<std::int32_t, Confirmation> confirmed_;  // track ID -> when first seen confirmed
+  std::vector<Collision> collisions_;
+  std::size_t events_seen_ = 0;
+  double min_separation_m_ = 0.0;
+  bool separation_seen_ = false;
+  std::int64_t steps_ = 0;
+  double next_coverage_s_ = 0.0;
+  double next_series_s_ = 0.0;
+  double next_second_s_ = 0.0;
+  double next_track_s_ = 0.0;
+};
+
+/// Each expectation the scenario states, checked against `report`.
+std::vector<ExpectOutcome> EvaluateExpectations(const Expectations& expect, const Report& report);
+
+/// Nearest-rank percentile `p` in [0, 1] of `values` (not empty).
+double Percentile(std::vector<double> values, double p);
+
+/// "idle", "takeoff", "search", "investigate", "return_to_launch", "land", "landed", "hold".
+std::string FlightModeName(radio::FlightMode mode);
+
+}  // namespace fireswarm::run::internal

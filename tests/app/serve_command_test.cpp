@@ -1,0 +1,413 @@
+// End-to-end tests of `fireswarm serve` and `fireswarm sim`: the real server and
+// a simulated fleet as two processes on the two ends of a serial line made of
+// pseudo-terminals. Each process opens a pty's slave as its serial device; a
+// relay thread in the test copies bytes between the two masters, as a null-modem
+// cable (or `socat pty pty`) would. Every wait has a deadline (poll() on a
+// pipe); none sleeps.
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <poll.h>
+#include <pty.h>
+#include <termios.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <lcm/lcm-cpp.hpp>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <random>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "app/fireswarm_process.hpp"
+#include "app/run_fireswarm.hpp"
+#include "fireswarm/operator_command_t.hpp"
+
+namespace fireswarm::app {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using Json = nlohmann::json;
+using std::chrono::seconds;
+
+constexpr double kLaunchLat = 46.5;
+constexpr double kLaunchLon = 7.5;
+constexpr double kMetresPerDegLat = 111'320.0;
+constexpr double kPi = 3.14159265358979323846;
+// Faster than real time, slow enough for two cameras on a loaded 2-core machine.
+constexpr const char* kSimSpeed = "20";
+constexpr auto kMissionDeadline = seconds(90);
+constexpr auto kStartDeadline = seconds(30);
+constexpr auto kExitDeadline = seconds(10);
+
+// A point `east_m`, `north_m` from the launch site, "lat,lon".
+std::string LatLonText(double east_m, double north_m) {
+  const double lat = kLaunchLat + north_m / kMetresPerDegLat;
+  const double lon = kLaunchLon + east_m / (kMetresPerDegLat * std::cos(kLaunchLat * kPi / 180.0));
+  return std::to_string(lat) + "," + std::to_string(lon);
+}
+
+// A 300 m x 200 m forest just east of the launch site, as GeoJSON.
+std::string SmallArea() {
+  Json ring = Json::array();
+  for (const auto& [e, n] : std::vector<std::pair<double, double>>{
+           {20, -100}, {320, -100}, {320, 100}, {20, 100}, {20, -100}}) {
+    const double lat = kLaunchLat + n / kMetresPerDegLat;
+    const double lon = kLaunchLon + e / (kMetresPerDegLat * std::cos(kLaunchLat * kPi / 180.0));
+    ring.push_back({lon, lat});
+  }
+  return Json{{"type", "Polygon"}, {"coordinates", {ring}}}.dump();
+}
+
+// Two pseudo-terminal pairs joined master to master by a relay thread: a serial
+// cable between the two slave devices. The test keeps both slaves open too, so
+// a process killed on one end leaves the cable intact for its restart.
+class PtyCable {
+ public:
+  PtyCable() {
+    termios raw{};
+    ::cfmakeraw(&raw);
+    std::array<char, 128> name{};
+    for (End& end : ends_) {
+      if (::openpty(&end.master, &end.slave, name.data(), &raw, nullptr) != 0) {
+        ADD_FAILURE() << "openpty failed";
+        return;
+      }
+      end.path = name.data();
+      ::fcntl(end.master, F_SETFL, ::fcntl(end.master, F_GETFL) | O_NONBLOCK);
+    }
+    if (::pipe(stop_) != 0) ADD_FAILURE() << "pipe failed";
+    relay_ = std::thread([this] { Relay(); });
+  }
+  ~PtyCable() {
+    if (relay_.joinable()) {
+      const char byte = 0;
+      [[maybe_unused]] const ssize_t written = ::write(stop_[1], &byte, 1);
+      relay_.join();
+    }
+    for (const End& end : ends_) {
+      ::close(end.master);
+      ::close(end.slave);
+    }
+    ::close(stop_[0]);
+    ::close(stop_[1]);
+  }
+  PtyCable(const PtyCable&) = delete;
+  PtyCable& operator=(const PtyCable&) = delete;
+
+  const std::string& server_end() const { return ends_[0].path; }
+  const std::string& fleet_end() const { return ends_[1].path; }
+
+ private:
+  struct End {
+    int master = -1;
+    int slave = -1;
+    std::string path;
+  };
+
+  void Relay() {
+    std::array<char, 4096> buffer{};
+    while (true) {
+      std::array<pollfd, 3> fds{pollfd{ends_[0].master, POLLIN, 0},
+                                pollfd{ends_[1].master, POLLIN, 0}, pollfd{stop_[0], POLLIN, 0}};
+      if (::poll(fds.data(), fds.size(), -1) < 0) continue;
+      if (fds[2].revents != 0) return;
+      for (std::size_t from = 0; from < 2; ++from) {
+        if ((fds[from].revents & POLLIN) == 0) continue;
+        const ssize_t got = ::read(ends_[from].master, buffer.data(), buffer.size());
+        if (got <= 0) continue;
+        WriteAll(ends_[1 - from].master, buffer.data(), static_cast<std::size_t>(got));
+      }
+    }
+  }
+  static void WriteAll(int fd, const char* data, std::size_t size) {
+    while (size > 0) {
+      const ssize_t put = ::write(fd, data, size);
+      if (put > 0) {
+        data += put;
+        size -= static_cast<std::size_t>(put);
+      } else {
+        pollfd writable{fd, POLLOUT, 0};
+        if (::poll(&writable, 1, 100) <= 0) return;  // the far end is not reading: drop
+      }
+    }
+  }
+
+  std::array<End, 2> ends_;
+  int stop_[2] = {-1, -1};
+  std::thread relay_;
+};
+
+class ServeCommand : public CommandTest {
+ protected:
+  void SetUp() override {
+    CommandTest::SetUp();
+    area_ = PathOf("area.geojson");
+    std::ofstream(area_) << SmallArea();
+  }
+
+  std::vector<std::string> ServeArgs(const std::string& device) const {
+    return {"serve",
+            "--area",
+            area_,
+            "--drones",
+            "2",
+            "--launch",
+            LatLonText(0, 0),
+            "--altitude-m",
+            "40",
+            "--serial",
+            device,
+            "--telemetry-hz",
+            "4",
+            "--start",
+            "--until-complete",
+            "--duration-s",
+            "80"};
+  }
+  static std::vector<std::string> SimArgs(const std::string& device) {
+    // A fire in the middle of the area; a long link-lost timeout so the fleet
+    // flies on while the server is restarted (vehicle timers run kSimSpeed times
+    // faster than the wall clock).
+    return {"sim",  "--count", "2",       "--launch", LatLonText(0, 0),   "--serial",
+            device, "--speed", kSimSpeed, "--fire",   LatLonText(170, 0), "--link-lost-timeout-s",
+            "600"};
+  }
+
+  // Reads `process`'s JSON lines until one has "event" == `event`; nullopt at the
+  // deadline or end of output. Every line read is kept in `seen`.
+  static std::optional<Json> WaitForEvent(FireswarmProcess& process, const std::string& event,
+                                          Clock::time_point deadline, std::vector<Json>& seen) {
+    while (const std::optional<std::string> line = process.ReadLine(deadline)) {
+      Json j = Json::parse(*line, nullptr, false);
+      if (j.is_discarded()) continue;
+      seen.push_back(j);
+      if (j.value("event", "") == event) return j;
+    }
+    return std::nullopt;
+  }
+
+  static Json SummaryOf(const RunResult& run) {
+    for (auto line = run.lines.rbegin(); line != run.lines.rend(); ++line) {
+      Json j = Json::parse(*line, nullptr, false);
+      if (!j.is_discarded() && j.value("event", "") == "summary") return j;
+    }
+    ADD_FAILURE() << "no summary line";
+    return Json::object();
+  }
+
+  static void ExpectAllDone(const Json& summary) {
+    EXPECT_EQ(summary.value("state", ""), "complete") << summary.dump();
+    ASSERT_EQ(summary.at("vehicles").size(), 2U) << summary.dump();
+    for (const Json& vehicle : summary.at("vehicles")) {
+      EXPECT_EQ(vehicle.value("phase", ""), "done") << summary.dump();
+    }
+  }
+
+  std::string area_;
+};
+
+TEST_F(ServeCommand, ServerAndSimulatedFleetOnAPtyCompleteAMission) {
+  PtyCable cable;
+  FireswarmProcess sim(SimArgs(cable.fleet_end()));
+  std::vector<std::string> serve_args = ServeArgs(cable.server_end());
+  const std::string lcm_log = PathOf("serve.lcmlog");
+  serve_args.insert(serve_args.end(), {"--log", lcm_log});
+  FireswarmProcess serve(serve_args);
+  const auto started = Clock::now();
+  const RunResult run = serve.Finish(Clock::now() + kMissionDeadline);
+  const double wall_s = std::chrono::duration<double>(Clock::now() - started).count();
+  ASSERT_EQ(run.exit_code, 0) << (run.lines.empty() ? "" : run.lines.back());
+  const Json summary = SummaryOf(run);
+  ExpectAllDone(summary);
+  EXPECT_EQ(summary.value("resumed", true), false);
+  EXPECT_GT(summary.at("frames_sent").value("mission_chunk", 0), 0);
+  EXPECT_EQ(summary.at("radio").value("requests_failed", 1), 0);
+  // What went on LCM is in the log, for lcm-logplayer.
+  EXPECT_GT(std::filesystem::file_size(lcm_log), 0U);
+
+  sim.Signal(SIGTERM);
+  const RunResult fleet = sim.Finish(Clock::now() + kExitDeadline);
+  EXPECT_EQ(fleet.exit_code, 0);
+  ASSERT_FALSE(fleet.lines.empty());
+  const Json figures = Json::parse(fleet.lines.back());
+  ASSERT_EQ(figures.at("vehicles").size(), 2U);
+  for (const Json& vehicle : figures.at("vehicles")) EXPECT_EQ(vehicle.at("mode"), "landed");
+  std::cout << "[ figures  ] mission " << summary.at("mission_seconds") << " s on the server's "
+            << "clock, " << wall_s << " s wall; sim " << figures.at("sim_seconds")
+            << " s simulated, real-time factor " << figures.at("real_time_factor") << "; tracks "
+            << summary.at("tracks").size() << "\n";
+}
+
+TEST_F(ServeCommand, ServerKilledMidMissionResumesFromItsJournal) {
+  PtyCable cable;
+  const std::string journal = PathOf("mission.journal");
+  std::vector<std::string> serve_args = ServeArgs(cable.server_end());
+  serve_args.insert(serve_args.end(), {"--journal", journal});
+  FireswarmProcess sim(SimArgs(cable.fleet_end()));
+
+  std::size_t reports_before_kill = 0;
+  {
+    FireswarmProcess serve(serve_args);
+    std::vector<Json> seen;
+    const auto deadline = Clock::now() + kMissionDeadline;
+    ASSERT_TRUE(WaitForEvent(serve, "start", deadline, seen)) << "no start";
+    // Killed once the fleet flies and a fire report is in.
+    ASSERT_TRUE(WaitForEvent(serve, "report", deadline, seen)) << "no fire report";
+    const auto running = [](const Json& j) {
+      return j.value("event", "") == "state" && j.value("state", "") == "running";
+    };
+    while (std::none_of(seen.begin(), seen.end(), running)) {
+      ASSERT_TRUE(WaitForEvent(serve, "state", deadline, seen)) << "the mission is not running";
+    }
+    for (const Json& j : seen) reports_before_kill += j.value("event", "") == "report" ? 1U : 0U;
+    serve.Kill();
+  }
+  // The journal holds the mission, its start and the report(s).
+  std::size_t journaled_reports = 0;
+  {
+    std::ifstream in(journal);
+    for (std::string line; std::getline(in, line);) {
+      journaled_reports += Json::parse(line).at("kind") == "report" ? 1U : 0U;
+    }
+  }
+  EXPECT_GE(journaled_reports, reports_before_kill);
+  ASSERT_GE(reports_before_kill, 1U);
+
+  FireswarmProcess restarted(serve_args);
+  std::vector<Json> seen;
+  const std::optional<Json> resumed =
+      WaitForEvent(restarted, "resumed", Clock::now() + kStartDeadline, seen);
+  ASSERT_TRUE(resumed.has_value()) << "no 'resumed' line";
+  EXPECT_GE(resumed->at("tracks").get<std::size_t>(), 1U);
+  EXPECT_EQ(resumed->at("state"), "running");
+  const std::size_t tracks_before = resumed->at("tracks").get<std::size_t>();
+  const RunResult run = restarted.Finish(Clock::now() + kMissionDeadline);
+  ASSERT_EQ(run.exit_code, 0) << (run.lines.empty() ? "" : run.lines.back());
+  const Json summary = SummaryOf(run);
+  ExpectAllDone(summary);
+  EXPECT_EQ(summary.at("resumed"), true);
+  // Not planned or uploaded again: no "planned" line, no chunk on the air.
+  for (const std::string& line : run.lines) EXPECT_EQ(line.find("\"planned\""), std::string::npos);
+  EXPECT_EQ(summary.at("frames_sent").value("mission_chunk", 0), 0) << summary.dump();
+  // Every track from before the kill is still there, with its ID.
+  ASSERT_GE(summary.at("tracks").size(), tracks_before);
+  for (std::size_t i = 0; i < tracks_before; ++i) {
+    EXPECT_EQ(summary.at("tracks").at(i).at("id"), static_cast<int>(i) + 1);
+  }
+  sim.Signal(SIGTERM);
+  EXPECT_EQ(sim.Finish(Clock::now() + kExitDeadline).exit_code, 0);
+}
+
+// Without --start the server waits for an operator's START on LCM (udpm:// on
+// loopback; skipped, saying why, on a machine without a multicast route).
+TEST_F(ServeCommand, WaitsForAnOperatorStartOnLcm) {
+  std::random_device random;
+  const std::string url =
+      "udpm://239.255.76.67:" + std::to_string(20'000 + random() % 40'000U) + "?ttl=0";
+  lcm::LCM console(url);
+  if (!console.good()) GTEST_SKIP() << "udpm:// needs a multicast route (scripts/install-deps.sh)";
+  PtyCable cable;
+  FireswarmProcess sim(SimArgs(cable.fleet_end()));
+  std::vector<std::string> serve_args = ServeArgs(cable.server_end());
+  std::erase(serve_args, "--start");
+  serve_args.insert(serve_args.end(), {"--lcm", url});
+  FireswarmProcess serve(serve_args);
+
+  // START again until the server has taken one: it may not be listening yet.
+  fireswarm::operator_command_t start{};
+  start.command = fireswarm::operator_command_t::START;
+  start.reason = "operator console";
+  const auto deadline = Clock::now() + kStartDeadline;
+  std::optional<Json> taken;
+  while (!taken && Clock::now() < deadline) {
+    ASSERT_EQ(console.publish("FIRESWARM_OPERATOR_COMMAND", &start), 0);
+    const auto retry_at = std::min(deadline, Clock::now() + std::chrono::milliseconds(200));
+    while (const std::optional<std::string> line = serve.ReadLine(retry_at)) {
+      Json j = Json::parse(*line, nullptr, false);
+      if (!j.is_discarded() && j.value("event", "") == "operator_command") {
+        taken = j;
+        break;
+      }
+    }
+  }
+  ASSERT_TRUE(taken.has_value()) << "the server took no START";
+  EXPECT_EQ(taken->at("accepted"), true) << taken->dump();
+  const RunResult run = serve.Finish(Clock::now() + kMissionDeadline);
+  ASSERT_EQ(run.exit_code, 0) << (run.lines.empty() ? "" : run.lines.back());
+  ExpectAllDone(SummaryOf(run));
+  sim.Signal(SIGTERM);
+  EXPECT_EQ(sim.Finish(Clock::now() + kExitDeadline).exit_code, 0);
+}
+
+bool Mentions(const RunResult& run, const std::string& text) {
+  return std::any_of(run.lines.begin(), run.lines.end(),
+                     [&](const std::string& line) { return line.find(text) != std::string::npos; });
+}
+
+TEST_F(ServeCommand, BadFlagsExitTwoNamingTheFlag) {
+  const std::string link = " --udp 127.0.0.1:0 127.0.0.1:9";
+  const std::string serve = "serve --area " + area_ + " --drones 2 --start";
+  const std::string sim = "sim --launch 46.5,7.5";
+  struct Case {
+    std::string args;
+    std::vector<std::string> named;
+  };
+  for (const Case& c : std::vector<Case>{
+           {serve, {"--udp", "--serial"}},
+           {serve + link + " --serial /dev/null", {"--udp", "--serial"}},
+           {"serve --drones 2 --start" + link, {"--area"}},
+           {"serve --area " + area_ + " --drones 0 --start" + link, {"--drones"}},
+           {"serve --area " + area_ + " --drones 2" + link, {"--start", "--lcm"}},
+           {serve + " --first-id 254" + link, {"--first-id"}},
+           {serve + " --mode token" + link, {"--mode"}},
+           {serve + " --checksum sum" + link, {"--checksum"}},
+           {serve + " --launch 95,7" + link, {"--launch"}},
+           {serve + " --altitude-m -5" + link, {"--altitude-m"}},
+           {serve + " --camera flir" + link, {"--camera"}},
+           {serve + " --telemetry-hz 0" + link, {"--telemetry-hz"}},
+           {serve + " --duration-s 0" + link, {"--duration-s"}},
+           {"serve --area " + PathOf("missing.geojson") + " --drones 2 --start" + link,
+            {"missing.geojson"}},
+           {"sim" + link, {"--launch"}},
+           {sim, {"--udp", "--serial"}},
+           {"sim --launch 46.5" + link, {"--launch"}},
+           {sim + " --count 0" + link, {"--count"}},
+           {sim + " --count 2 --first-id 254" + link, {"--first-id"}},
+           {sim + " --fire 1,2,3" + link, {"--fire"}},
+           {sim + " --fire 48,7.5" + link, {"--fire"}},
+           {sim + " --speed 0.5" + link, {"--speed"}},
+           {sim + " --camera flir" + link, {"--camera"}},
+           {sim + " --link-lost-timeout-s 1" + link, {"--link-lost-timeout-s"}},
+       }) {
+    const RunResult run = RunFireswarm(c.args);
+    EXPECT_EQ(run.exit_code, 2) << c.args;
+    for (const std::string& flag : c.named) EXPECT_TRUE(Mentions(run, flag)) << c.args;
+  }
+}
+
+TEST(SimCommand, StopsAfterTheDurationWithOneSummaryForTheFleet) {
+  const RunResult run = RunFireswarm(
+      "sim --count 3 --first-id 5 --launch 46.5,7.5 --udp 127.0.0.1:0 127.0.0.1:9 --speed 20 "
+      "--duration-s 2");
+  EXPECT_EQ(run.exit_code, 0);
+  ASSERT_EQ(run.lines.size(), 1U);
+  const Json summary = Json::parse(run.lines[0]);
+  EXPECT_NEAR(summary.at("sim_seconds").get<double>(), 2.0, 0.02);
+  ASSERT_EQ(summary.at("vehicles").size(), 3U);
+  for (int i = 0; i < 3; ++i) {
+    const Json& vehicle = summary.at("vehicles").at(static_cast<std::size_t>(i));
+    EXPECT_EQ(vehicle.at("id"), 5 + i);
+    EXPECT_EQ(vehicle.at("mode"), "idle");
+  }
+}
+
+}  // namespace
+}  // namespace fireswarm::app

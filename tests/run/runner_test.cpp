@@ -1,0 +1,235 @@
+// Whole missions in lockstep: the real planner, server, vehicles, radio channel
+// and simulator, scored against truth. Scenarios are small (< 1 km^2, two drones)
+// so the suite stays fast under ASan on two cores.
+#include "fireswarm/run/runner.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+#include "fireswarm/run/report_json.hpp"
+#include "fireswarm/run/scenario.hpp"
+
+namespace fireswarm::run {
+namespace {
+
+// 800 m x 500 m of forest, two drones with the seed's camera, one fire near the
+// middle, every expectation stated.
+constexpr const char* kSmallFire = R"(
+name: small_fire
+seed: 7
+duration_s: 900
+area:
+  polygon: [[7.0, 45.0], [7.010146, 45.0], [7.010146, 45.0045], [7.0, 45.0045]]
+fleet:
+  count: 2
+  launch: {lat: 44.9995, lon: 7.005}
+  camera: seed
+  altitude_m: 60
+  speed_mps: 10
+fires:
+  - {lat: 45.00230, lon: 7.00480, start_s: 0}
+expect:
+  all_fires_confirmed_within_s: 600
+  max_fused_error_m: 10
+  no_collisions: true
+  min_coverage: 0.5
+  max_false_tracks: 0
+)";
+
+Scenario SmallFire() {
+  return ParseScenario(kSmallFire, "small_fire.yaml", ".");
+}
+
+// Runs once per process: the small scenario is the expensive part of the suite.
+const RunResult& SmallFireRun() {
+  static const RunResult result = RunScenario(SmallFire());
+  return result;
+}
+
+void PrintFigures(const RunResult& result) {
+  const Report& report = result.report;
+  std::printf("stop %s, mission %s, %.1f sim s in %.2f wall s (x%.1f), coverage %.3f\n",
+              ToString(result.stop), result.mission_state.c_str(), report.sim_seconds,
+              report.wall_seconds, report.real_time_factor, report.coverage);
+  for (const FireOutcome& fire : report.fires) {
+    std::printf("fire: error %.2f m, first report %.1f s, confirmed %.1f s\n",
+                fire.error_m.value_or(-1.0), fire.first_report_s.value_or(-1.0),
+                fire.confirmed_s.value_or(-1.0));
+  }
+}
+
+TEST(RunScenario, SmallFireIsConfirmedAccurately) {
+  const RunResult& result = SmallFireRun();
+  PrintFigures(result);
+  const Report& report = result.report;
+  ASSERT_EQ(report.fires.size(), 1U);
+  const FireOutcome& fire = report.fires.front();
+  ASSERT_TRUE(fire.confirmed_s.has_value()) << ToJson(report).dump(2);
+  ASSERT_TRUE(fire.error_m.has_value());
+  EXPECT_LT(*fire.error_m, 10.0);
+  ASSERT_TRUE(fire.first_report_s.has_value());
+  EXPECT_LE(*fire.first_report_s, *fire.confirmed_s);
+  EXPECT_FALSE(fire.vehicles.empty());
+  EXPECT_TRUE(report.false_tracks.empty());
+  EXPECT_TRUE(report.collisions.empty());
+  EXPECT_GT(report.coverage, 0.5);
+  EXPECT_GT(report.sim_seconds, 0.0);
+  EXPECT_GT(report.real_time_factor, 0.0);
+  EXPECT_TRUE(report.AllExpectationsHold()) << ToJson(report).dump(2);
+}
+
+TEST(RunScenario, ReportsRadioAndVehicles) {
+  const Report& report = SmallFireRun().report;
+  EXPECT_GT(report.radio.busy_fraction, 0.0);
+  EXPECT_LT(report.radio.busy_fraction, 1.0);
+  EXPECT_EQ(report.radio.telemetry_age_p50_p99_s.size(), 2U);
+  for (const auto& [id, ages] : report.radio.telemetry_age_p50_p99_s) {
+    EXPECT_LE(ages.first, ages.second) << "vehicle " << id;
+    EXPECT_LT(ages.second, 5.0) << "vehicle " << id;
+  }
+  EXPECT_GT(report.radio.reports_received, 0U);
+  ASSERT_TRUE(report.radio.report_latency_p50_s.has_value());
+  EXPECT_LT(*report.radio.report_latency_p50_s, 5.0);
+  ASSERT_EQ(report.vehicles.size(), 2U);
+  for (const auto& [id, vehicle] : report.vehicles) {
+    EXPECT_GT(vehicle.distance_m, 500.0) << "vehicle " << id;
+    EXPECT_GT(vehicle.battery_used, 0.0) << "vehicle " << id;
+    EXPECT_FALSE(vehicle.final_state.empty());
+  }
+  ASSERT_TRUE(report.min_separation_m.has_value());
+  EXPECT_GT(*report.min_separation_m, 1.0);
+  ASSERT_GE(report.coverage_over_time.size(), 2U);
+  EXPECT_DOUBLE_EQ(report.coverage_over_time.back().second, report.coverage);
+}
+
+TEST(RunScenario, ReportJsonHasTheContractKeys) {
+  const nlohmann::ordered_json j = ToJson(SmallFireRun().report);
+  std::vector<std::string> keys;
+  for (const auto& item : j.items()) keys.push_back(item.key());
+  EXPECT_EQ(keys, (std::vector<std::string>{"fires", "false_tracks", "coverage",
+                                            "coverage_over_time", "collisions", "min_separation_m",
+                                            "radio", "vehicles", "sim_seconds", "wall_seconds",
+                                            "real_time_factor", "expect"}));
+  std::vector<std::string> fire_keys;
+  for (const auto& item : j["fires"][0].items()) fire_keys.push_back(item.key());
+  EXPECT_EQ(fire_keys,
+            (std::vector<std::string>{"true_lat", "true_lon", "fused_lat", "fused_lon", "error_m",
+                                      "first_report_s", "confirmed_s", "vehicles"}));
+  for (const char* key :
+       {"busy_fraction", "telemetry_age_s", "retries", "report_latency_s", "reports_lost"}) {
+    EXPECT_TRUE(j["radio"].contains(key)) << key;
+  }
+  for (const auto& item : j["vehicles"].items()) {
+    EXPECT_TRUE(item.value().contains("distance_m"));
+    EXPECT_TRUE(item.value().contains("battery_used"));
+    EXPECT_TRUE(item.value().contains("final_state"));
+  }
+  ASSERT_EQ(j["expect"].size(), 5U);
+  for (const auto& e : j["expect"]) EXPECT_EQ(e["verdict"], "pass") << e.dump();
+}
+
+// A shorter run of the same scenario, twice: identical reports apart from the
+// wall-clock fields, and the same simulator state.
+TEST(RunScenario, SameSeedSameReport) {
+  Scenario scenario = SmallFire();
+  scenario.duration_s = 120.0;
+  const RunResult first = RunScenario(scenario);
+  const RunResult second = RunScenario(scenario);
+  nlohmann::ordered_json a = ToJson(first.report);
+  nlohmann::ordered_json b = ToJson(second.report);
+  for (const char* key : {"wall_seconds", "real_time_factor"}) {
+    a.erase(key);
+    b.erase(key);
+  }
+  EXPECT_EQ(a.dump(), b.dump());
+  EXPECT_EQ(first.state_hash, second.state_hash);
+  EXPECT_EQ(first.stop, StopReason::kDuration);
+  EXPECT_DOUBLE_EQ(first.report.sim_seconds, 120.0);
+}
+
+TEST(RunScenario, FailedExpectationIsReported) {
+  Scenario scenario = SmallFire();
+  scenario.duration_s = 30.0;  // far too short to search anything
+  scenario.expect = Expectations{};
+  scenario.expect.min_coverage = 0.9;
+  scenario.expect.no_collisions = true;
+  const Report report = RunScenario(scenario).report;
+  EXPECT_FALSE(report.AllExpectationsHold());
+  ASSERT_EQ(report.expect.size(), 2U);
+  EXPECT_EQ(report.expect[0].name, "no_collisions");
+  EXPECT_TRUE(report.expect[0].passed);
+  EXPECT_EQ(report.expect[1].name, "min_coverage");
+  EXPECT_FALSE(report.expect[1].passed);
+  EXPECT_DOUBLE_EQ(report.expect[1].limit, 0.9);
+  EXPECT_LT(report.expect[1].value, 0.9);
+  EXPECT_FALSE(report.expect[1].detail.empty());
+}
+
+// The small area with `extra` YAML appended (no fires, no expectations).
+Scenario SmallArea(const std::string& extra) {
+  const std::string text = R"(
+name: small_area
+seed: 3
+duration_s: 60
+area:
+  polygon: [[7.0, 45.0], [7.010146, 45.0], [7.010146, 45.0045], [7.0, 45.0045]]
+fleet:
+  count: 2
+  launch: {lat: 44.9995, lon: 7.005}
+)" + extra;
+  return ParseScenario(text, "small_area.yaml", ".");
+}
+
+std::vector<std::pair<double, double>> TruePositions(const Report& report) {
+  std::vector<std::pair<double, double>> out;
+  for (const FireOutcome& fire : report.fires)
+    out.emplace_back(fire.truth.lat_deg, fire.truth.lon_deg);
+  return out;
+}
+
+TEST(RunScenario, RandomFiresLieInsideTheAreaAndFollowTheirSeed) {
+  Scenario scenario = SmallArea("random_fires: {count: 4, seed: 5}\n");
+  scenario.duration_s = 1.0;
+  const Report a = RunScenario(scenario).report;
+  const Report b = RunScenario(scenario).report;
+  scenario.random_fires->seed = 6;
+  const Report c = RunScenario(scenario).report;
+  ASSERT_EQ(a.fires.size(), 4U);
+  for (const FireOutcome& fire : a.fires) {
+    EXPECT_GT(fire.truth.lat_deg, 45.0);
+    EXPECT_LT(fire.truth.lat_deg, 45.0045);
+    EXPECT_GT(fire.truth.lon_deg, 7.0);
+    EXPECT_LT(fire.truth.lon_deg, 7.010146);
+    EXPECT_FALSE(fire.confirmed_s.has_value());
+    EXPECT_FALSE(fire.error_m.has_value());
+  }
+  EXPECT_EQ(TruePositions(a), TruePositions(b));
+  EXPECT_NE(TruePositions(a), TruePositions(c));
+}
+
+// A vehicle whose radio is silent from the start never hears its mission: it stays
+// on the ground while the other one flies.
+TEST(RunScenario, RadioSilentVehicleNeitherHearsNorIsHeard) {
+  const Report report =
+      RunScenario(SmallArea("faults:\n  - {vehicle: 2, at_s: 0, kind: radio_silent}\n")).report;
+  ASSERT_EQ(report.vehicles.size(), 2U);
+  EXPECT_EQ(report.vehicles.at(2).final_state, "idle");
+  EXPECT_LT(report.vehicles.at(2).distance_m, 1.0);
+  EXPECT_GT(report.vehicles.at(1).distance_m, 100.0);
+  EXPECT_EQ(report.radio.telemetry_age_p50_p99_s.count(2), 0U);
+  EXPECT_EQ(report.radio.telemetry_age_p50_p99_s.count(1), 1U);
+}
+
+TEST(RunScenario, LostVehicleEndsLost) {
+  Scenario scenario = SmallArea("faults:\n  - {vehicle: 2, at_s: 20, kind: total_loss}\n");
+  scenario.duration_s = 40.0;
+  const Report report = RunScenario(scenario).report;
+  EXPECT_EQ(report.vehicles.at(2).final_state, "lost");
+  EXPECT_NE(report.vehicles.at(1).final_state, "lost");
+}
+
+}  // namespace
+}  // namespace fireswarm::run
