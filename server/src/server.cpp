@@ -227,7 +227,8 @@ void Server::Investigate(std::uint8_t vehicle, common::LatLon point, double radi
   command.radius_m = radius_m > 0.0 ? radius_m : config_.investigate_radius_m;
   command.duration_s = static_cast<std::uint16_t>(std::lround(config_.investigate_s));
   scheduler_->SendCommand(vehicle, command);
-  investigations_.push_back(Investigation{vehicle, track_id, now_s, now_s + config_.investigate_s});
+  investigations_.push_back(
+      Investigation{vehicle, track_id, now_s, now_s + config_.investigate_s, false});
   Record(
       now_s, "investigation",
       {{"vehicle", vehicle}, {"track_id", track_id}, {"until_s", now_s + config_.investigate_s}});
@@ -278,7 +279,7 @@ radio::Nanos Server::NextWakeup() const {
   radio::Nanos next = scheduler_->NextWakeup();
   if (mission_) next = std::min(next, mission_->NextWakeup());
   for (const Investigation& i : investigations_) {
-    if (i.track_id == 0) continue;
+    if (i.track_id == 0 || i.judged) continue;
     const FireTrack* track = fusion_.Find(i.track_id);
     if (track != nullptr && track->status == FireTrackStatus::kTentative) {
       next = std::min(next, radio::FromSeconds(i.until_s + config_.reject_grace_s));
@@ -358,14 +359,15 @@ void Server::AfterFusion(const FireObservation& observation, const FireReportRes
 }
 
 void Server::CheckInvestigations(double now_s) {
-  for (const Investigation& i : investigations_) {
-    if (i.track_id == 0 || now_s < i.until_s + config_.reject_grace_s) continue;
+  for (Investigation& i : investigations_) {
+    if (i.judged || i.track_id == 0 || now_s < i.until_s + config_.reject_grace_s) continue;
+    i.judged = true;
     const FireTrack* track = fusion_.Find(i.track_id);
     if (track == nullptr || track->status != FireTrackStatus::kTentative) continue;
     const bool seen_again = std::ranges::any_of(track->reports, [&](const FireObservation& o) {
       return o.vehicle_id == i.vehicle && o.detection_time_s >= i.started_s;
     });
-    if (seen_again) continue;
+    if (seen_again) continue;  // still tentative, but not a rock: leave it to later views
     fusion_.Reject(i.track_id);
     Record(now_s, "reject", {{"track_id", i.track_id}, {"by_vehicle", i.vehicle}});
   }
@@ -443,7 +445,7 @@ Server Server::Restore(const ServerConfig& config, const common::LocalFrame& fra
       } else if (entry.kind == "investigation") {
         server.investigations_.push_back(Investigation{
             data.at("vehicle").get<std::uint8_t>(), data.at("track_id").get<std::int32_t>(),
-            entry.t_s, data.at("until_s").get<double>()});
+            entry.t_s, data.at("until_s").get<double>(), false});
       } else if (entry.kind == "investigate_order") {
         // The order itself is carried out by its "investigation" entry.
       } else {

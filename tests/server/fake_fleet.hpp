@@ -5,6 +5,8 @@
 // knows vehicles only through frames.
 #pragma once
 
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <memory>
 #include <set>
@@ -104,11 +106,23 @@ struct Air {
   // Runs until `done()` holds or the next event would pass `limit`.
   template <typename ServerEnd, typename Done>
   Nanos Run(ServerEnd& server, Nanos limit, Done&& done) {
+    // A server end that keeps asking to be woken at the same instant would spin
+    // this loop forever: that fails the test instead.
+    constexpr int kMaxWakeupsAtOneInstant = 10'000;
+    Nanos last{-1};
+    int same_instant = 0;
     while (!done()) {
       const Nanos t =
           std::max(channel.now(),
                    std::min(server.NextWakeup(), channel.NextEventTime().value_or(Nanos::max())));
       if (t > limit) break;
+      same_instant = t == last ? same_instant + 1 : 0;
+      last = t;
+      if (same_instant > kMaxWakeupsAtOneInstant) {
+        ADD_FAILURE() << "the server end asks to be woken at " << t.count()
+                      << " ns again and again without progress";
+        break;
+      }
       channel.AdvanceTo(t);
       std::vector<std::uint8_t> bytes;
       server_link.Receive(t, bytes);

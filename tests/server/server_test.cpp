@@ -147,6 +147,31 @@ TEST(Server, RejectsATrackTheInvestigatorDidNotSeeAgain) {
   EXPECT_EQ(fleet.server.fusion().tracks()[0].status, FireTrackStatus::kRejected);
 }
 
+// The reporter is the only searching vehicle, so it investigates its own track and
+// sees it again on the same pass: the track stays tentative (no independent view),
+// is not rejected, and the server stops waiting for the verdict (a wake-up stuck in
+// the past would spin a lockstep loop forever).
+TEST(Server, AnInvestigationSeenAgainIsJudgedOnceAndNotWaitedForAgain) {
+  Air air(0.0);
+  Server server(ServerConfig{}, kFrame);
+  air.Add(1);
+  server.AddVehicle(1);
+  server.LoadMission(Missions({1}));
+  air.vehicle(1).endpoint().SetTelemetry(Searching(0, 0, 1'000));
+  ASSERT_TRUE(server.Handle({OperatorCommand::Kind::kStart, 0, {}, 0.0, ""}, Nanos{0}));
+  air.Run(server, 60 * kSecond, [&] { return server.state() == MissionState::kRunning; });
+  air.vehicle(1).endpoint().QueueFireReport(ReportAt(50, 0, 0, 2'000));
+  air.RunUntil(server, air.channel.now() + 5 * kSecond);
+  ASSERT_EQ(server.investigations().size(), 1u);
+  EXPECT_EQ(server.investigations()[0].vehicle, 1);
+  air.vehicle(1).endpoint().QueueFireReport(ReportAt(51, 0, 0, 9'000));
+  air.RunUntil(server, air.channel.now() + 90 * kSecond);
+  ASSERT_EQ(server.fusion().tracks().size(), 1u);
+  EXPECT_EQ(server.fusion().tracks()[0].status, FireTrackStatus::kTentative);
+  EXPECT_TRUE(server.investigations()[0].judged);
+  EXPECT_GT(server.NextWakeup(), air.channel.now());
+}
+
 TEST(Server, RestoredFromItsJournalKeepsTracksAndPhasesAndUploadsNothingAgain) {
   Fleet fleet;
   fleet.air.vehicle(1).endpoint().QueueFireReport(ReportAt(150, 0, 0, 2'000));

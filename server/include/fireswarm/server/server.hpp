@@ -85,6 +85,9 @@ struct Investigation {
   std::int32_t track_id = 0;  ///< 0: an operator's point, not a track
   double started_s = 0.0;
   double until_s = 0.0;
+  /// The verdict on its track has been drawn (rejected, or seen again): the
+  /// server no longer waits for it.
+  bool judged = false;
 };
 
 class Server {
