@@ -270,7 +270,7 @@ std::vector<radio::Burst> Server::Step(radio::Nanos now, std::span<const std::ui
   bytes_received_ += received.size();
   for (const radio::Burst& burst : bursts) bytes_sent_ += burst.bytes.size();
   for (const radio::SchedulerEvent& event : scheduler_->TakeEvents()) OnEvent(event, now_s);
-  CheckInvestigations(now_s);
+  CheckInvestigations(now);
   UpdateState(now_s);
   return bursts;
 }
@@ -282,7 +282,7 @@ radio::Nanos Server::NextWakeup() const {
     if (i.track_id == 0 || i.judged) continue;
     const FireTrack* track = fusion_.Find(i.track_id);
     if (track != nullptr && track->status == FireTrackStatus::kTentative) {
-      next = std::min(next, radio::FromSeconds(i.until_s + config_.reject_grace_s));
+      next = std::min(next, VerdictDue(i));
     }
   }
   return next;
@@ -358,9 +358,16 @@ void Server::AfterFusion(const FireObservation& observation, const FireReportRes
   Investigate(*vehicle, point, 0.0, result.track_id, now_s);
 }
 
-void Server::CheckInvestigations(double now_s) {
+radio::Nanos Server::VerdictDue(const Investigation& investigation) const {
+  return radio::FromSeconds(investigation.until_s + config_.reject_grace_s);
+}
+
+void Server::CheckInvestigations(radio::Nanos now) {
+  const double now_s = Seconds(now);
   for (Investigation& i : investigations_) {
-    if (i.judged || i.track_id == 0 || now_s < i.until_s + config_.reject_grace_s) continue;
+    // Compared in the clock's own units: NextWakeup() asks for exactly VerdictDue(),
+    // and a round trip through seconds could leave `now` a hair short of it.
+    if (i.judged || i.track_id == 0 || now < VerdictDue(i)) continue;
     i.judged = true;
     const FireTrack* track = fusion_.Find(i.track_id);
     if (track == nullptr || track->status != FireTrackStatus::kTentative) continue;

@@ -152,7 +152,8 @@ class Server {
   std::optional<std::uint8_t> BestPlacedFor(const Eigen::Vector2d& point_ne_m,
                                             std::uint8_t reporter, double now_s) const;
   void SendToAll(radio::CommandType type);
-  void CheckInvestigations(double now_s);
+  radio::Nanos VerdictDue(const Investigation& investigation) const;
+  void CheckInvestigations(radio::Nanos now);
   void UpdateState(double now_s);
   void Record(double t_s, std::string kind, nlohmann::json data);
 
