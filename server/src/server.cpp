@@ -87,6 +87,12 @@ void ServerConfig::Validate() const {
   if (!(investigate_s >= 1.0 && investigate_s <= kMaxInvestigateS)) {
     throw std::invalid_argument("investigate_s must be in [1, 65535] s");
   }
+  if (!(investigate_transit_mps > 0.0) || !std::isfinite(investigate_transit_mps)) {
+    throw std::invalid_argument("investigate_transit_mps must be a positive number");
+  }
+  if (!(investigate_near_m > 0.0) || !std::isfinite(investigate_near_m)) {
+    throw std::invalid_argument("investigate_near_m must be a positive number");
+  }
   if (!(investigate_radius_m >= 0.0) || !std::isfinite(investigate_radius_m)) {
     throw std::invalid_argument("investigate_radius_m must be >= 0");
   }
@@ -220,18 +226,33 @@ void Server::SendToAll(radio::CommandType type) {
 
 void Server::Investigate(std::uint8_t vehicle, common::LatLon point, double radius_m,
                          std::int32_t track_id, double now_s) {
+  const Eigen::Vector2d point_ne_m = NorthEast(frame_, point);
+  // The vehicle counts the duration from the order: add its transit to the point.
+  double transit_s = 0.0;
+  if (const std::optional<radio::Telemetry>& t = registry_.state(vehicle).telemetry) {
+    transit_s = (NorthEast(frame_, {t->lat_deg, t->lon_deg}) - point_ne_m).norm() /
+                config_.investigate_transit_mps;
+  }
+  const double duration_s = std::min(kMaxInvestigateS, transit_s + config_.investigate_s);
   radio::Command command;
   command.type = radio::CommandType::kInvestigate;
   command.lat_deg = point.lat_deg;
   command.lon_deg = point.lon_deg;
   command.radius_m = radius_m > 0.0 ? radius_m : config_.investigate_radius_m;
-  command.duration_s = static_cast<std::uint16_t>(std::lround(config_.investigate_s));
+  command.duration_s = static_cast<std::uint16_t>(std::lround(duration_s));
   scheduler_->SendCommand(vehicle, command);
-  investigations_.push_back(
-      Investigation{vehicle, track_id, now_s, now_s + config_.investigate_s, false});
-  Record(
-      now_s, "investigation",
-      {{"vehicle", vehicle}, {"track_id", track_id}, {"until_s", now_s + config_.investigate_s}});
+  Investigation investigation;
+  investigation.vehicle = vehicle;
+  investigation.track_id = track_id;
+  investigation.started_s = now_s;
+  investigation.until_s = now_s + command.duration_s;
+  investigation.point_ne_m = point_ne_m;
+  investigations_.push_back(investigation);
+  Record(now_s, "investigation",
+         {{"vehicle", vehicle},
+          {"track_id", track_id},
+          {"until_s", investigation.until_s},
+          {"point_ne_m", {point_ne_m.x(), point_ne_m.y()}}});
 }
 
 std::optional<std::uint8_t> Server::BestPlacedFor(const Eigen::Vector2d& point_ne_m,
@@ -291,6 +312,12 @@ radio::Nanos Server::NextWakeup() const {
 void Server::OnEvent(const radio::SchedulerEvent& event, double now_s) {
   if (const auto* telemetry = std::get_if<radio::TelemetryReceived>(&event)) {
     registry_.OnTelemetry(telemetry->telemetry, now_s);
+    const Eigen::Vector2d where =
+        NorthEast(frame_, {telemetry->telemetry.lat_deg, telemetry->telemetry.lon_deg});
+    for (Investigation& i : investigations_) {
+      if (i.vehicle != telemetry->vehicle || i.judged || now_s > i.until_s) continue;
+      i.closest_m = std::min(i.closest_m, (where - i.point_ne_m).norm());
+    }
     clock_offset_s_[telemetry->vehicle] =
         now_s - static_cast<double>(telemetry->telemetry.time_ms) / kMillisPerSecond;
   } else if (const auto* report = std::get_if<radio::FireReportReceived>(&event)) {
@@ -371,6 +398,7 @@ void Server::CheckInvestigations(radio::Nanos now) {
     i.judged = true;
     const FireTrack* track = fusion_.Find(i.track_id);
     if (track == nullptr || track->status != FireTrackStatus::kTentative) continue;
+    if (!(i.closest_m <= config_.investigate_near_m)) continue;  // never got there: no verdict
     const bool seen_again = std::ranges::any_of(track->reports, [&](const FireObservation& o) {
       return o.vehicle_id == i.vehicle && o.detection_time_s >= i.started_s;
     });
@@ -450,9 +478,14 @@ Server Server::Restore(const ServerConfig& config, const common::LocalFrame& fra
       } else if (entry.kind == "reject") {
         server.fusion_.Reject(data.at("track_id").get<std::int32_t>());
       } else if (entry.kind == "investigation") {
-        server.investigations_.push_back(Investigation{
-            data.at("vehicle").get<std::uint8_t>(), data.at("track_id").get<std::int32_t>(),
-            entry.t_s, data.at("until_s").get<double>(), false});
+        Investigation i;
+        i.vehicle = data.at("vehicle").get<std::uint8_t>();
+        i.track_id = data.at("track_id").get<std::int32_t>();
+        i.started_s = entry.t_s;
+        i.until_s = data.at("until_s").get<double>();
+        i.point_ne_m = {data.at("point_ne_m").at(0).get<double>(),
+                        data.at("point_ne_m").at(1).get<double>()};
+        server.investigations_.push_back(i);
       } else if (entry.kind == "investigate_order") {
         // The order itself is carried out by its "investigation" entry.
       } else {

@@ -125,7 +125,8 @@ TEST(Server, SendsTheNearestOtherVehicleToANewFireAndResumesItOnConfirmation) {
   const common::EastNorth ordered = kFrame.ToLocal({order->lat_deg, order->lon_deg});
   EXPECT_NEAR(ordered.east_m, 150.0, 0.5);
   EXPECT_NEAR(ordered.north_m, 0.0, 0.5);
-  EXPECT_EQ(order->duration_s, 60);
+  // 60 s around it after the 150 m transit at 8 m/s, counted from the order.
+  EXPECT_EQ(order->duration_s, 79);
 
   // Vehicle 2 sees it too: confirmed by two vehicles, and 2 goes back to its lanes.
   fleet.air.vehicle(2).endpoint().QueueFireReport(ReportAt(152, 0, 300, 9'000));
@@ -139,12 +140,28 @@ TEST(Server, RejectsATrackTheInvestigatorDidNotSeeAgain) {
   fleet.air.vehicle(3).endpoint().QueueFireReport(ReportAt(1'900, 0, 2'000, 2'000));
   fleet.RunFor(5 * kSecond);
   ASSERT_EQ(fleet.server.fusion().tracks().size(), 1u);
-  ASSERT_NE(LastOf(fleet.air.vehicle(2), radio::CommandType::kInvestigate), nullptr);
-  // Nothing more is reported: after the loiter and the grace the track is rejected.
-  fleet.RunFor(50 * kSecond);
-  EXPECT_EQ(fleet.server.fusion().tracks()[0].status, FireTrackStatus::kTentative);
-  fleet.RunFor(30 * kSecond);
+  const radio::Command* order = LastOf(fleet.air.vehicle(2), radio::CommandType::kInvestigate);
+  ASSERT_NE(order, nullptr);
+  EXPECT_EQ(order->duration_s, 260) << "1,600 m at 8 m/s, then 60 s around the point";
+  // Vehicle 2 gets there and circles, and reports nothing.
+  fleet.air.vehicle(2).endpoint().SetTelemetry(Searching(1'880, 0, 60'000));
+  fleet.RunFor(200 * kSecond);
+  EXPECT_EQ(fleet.server.fusion().tracks()[0].status, FireTrackStatus::kTentative)
+      << "judged before the investigation was over";
+  fleet.RunFor(80 * kSecond);
   EXPECT_EQ(fleet.server.fusion().tracks()[0].status, FireTrackStatus::kRejected);
+}
+
+// An investigator that never came near the point (called away, slow, lost) says
+// nothing about the track: rejecting it would lose a real fire for good, since a
+// rejected track absorbs every later report.
+TEST(Server, AnInvestigatorThatNeverGotNearRejectsNothing) {
+  Fleet fleet;
+  fleet.air.vehicle(3).endpoint().QueueFireReport(ReportAt(1'900, 0, 2'000, 2'000));
+  fleet.RunFor(300 * kSecond);  // vehicle 2's telemetry stays 1.6 km away
+  ASSERT_EQ(fleet.server.investigations().size(), 1u);
+  EXPECT_TRUE(fleet.server.investigations()[0].judged);
+  EXPECT_EQ(fleet.server.fusion().tracks()[0].status, FireTrackStatus::kTentative);
 }
 
 // The reporter is the only searching vehicle, so it investigates its own track and
@@ -191,8 +208,9 @@ TEST(Server, RestoredFromItsJournalKeepsTracksAndPhasesAndUploadsNothingAgain) {
   EXPECT_EQ(restored.scheduler().stats().requests_sent, 0u);
   // Far from the sequence numbers the vehicles last answered: a new request is not
   // mistaken for a resend of an old one.
-  const int gap = (restored.scheduler().next_sequence() - fleet.server.scheduler().next_sequence() +
-                   65'536) % 65'536;
+  const int gap =
+      (restored.scheduler().next_sequence() - fleet.server.scheduler().next_sequence() + 65'536) %
+      65'536;
   EXPECT_GT(gap, 30'000);
   EXPECT_LT(gap, 35'536);
   EXPECT_EQ(restored.registry().ids(), fleet.server.registry().ids());

@@ -7,12 +7,15 @@
 // Re-tasking: when a report opens a new tentative track, the nearest searching
 // vehicle with a good link (another than the reporter when one exists: its GPS
 // error is independent) is sent to loiter around it (seed 7.4) for
-// investigate_s and then resumes its lanes by itself. A track that is still
-// tentative when that investigation is over, with no report from the
-// investigator, is rejected (the hot spot was not seen again: a sun-heated rock).
+// investigate_s (after its transit there) and then resumes its lanes by itself.
+// A track that is still tentative when that investigation is over, with no report
+// from an investigator that did get near it, is rejected (the hot spot was not
+// seen again: a sun-heated rock). An investigator that never got near (called
+// away, lost) judges nothing: the track stays tentative.
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -35,8 +38,16 @@ struct ServerConfig {
   LinkThresholds link;
   FireFusionConfig fusion;
   MissionManagerConfig mission;
-  bool auto_investigate = true;       ///< send a vehicle to each new tentative track
-  double investigate_s = 60.0;        ///< loiter time of an investigation, s (1..65535)
+  bool auto_investigate = true;  ///< send a vehicle to each new tentative track
+  double investigate_s = 60.0;   ///< loiter time of an investigation, s (1..65535)
+  /// Speed assumed for the transit to an investigation's circle, m/s: the order's
+  /// duration is that transit plus investigate_s (the vehicle counts it from the
+  /// order), so a far investigator still gets its time on the circle.
+  double investigate_transit_mps = 8.0;
+  /// An investigation judges its track only when the vehicle came this close to
+  /// the point, m (its loiter radius is 20 m by default; the camera sees ~45 m
+  /// to either side at 60 m).
+  double investigate_near_m = 60.0;
   double investigate_radius_m = 0.0;  ///< 0: the vehicle's own loiter radius parameter
   /// A tentative track is rejected this long after its investigation ended when
   /// the investigator did not report it again, s (reports still in the air).
@@ -84,9 +95,15 @@ struct Investigation {
   std::uint8_t vehicle = 0;
   std::int32_t track_id = 0;  ///< 0: an operator's point, not a track
   double started_s = 0.0;
+  /// When the vehicle stops circling: the order's time, the transit to the circle
+  /// at investigate_transit_mps, and investigate_s around it.
   double until_s = 0.0;
-  /// The verdict on its track has been drawn (rejected, or seen again): the
-  /// server no longer waits for it.
+  /// The point circled, local (north, east) m.
+  Eigen::Vector2d point_ne_m = Eigen::Vector2d::Zero();
+  /// Closest the vehicle's telemetry came to the point during the investigation, m.
+  double closest_m = std::numeric_limits<double>::infinity();
+  /// The verdict on its track has been drawn (rejected, seen again, or not
+  /// judged because the vehicle never got near): the server no longer waits.
   bool judged = false;
 };
 
