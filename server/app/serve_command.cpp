@@ -33,8 +33,6 @@ using radio::Nanos;
 constexpr const char* kName = "serve";
 constexpr int kMaxId = 254;
 constexpr std::uint16_t kMissionId = 1;
-// Waypoints this close to the launch site count as the launch site, m.
-constexpr double kLaunchSiteM = 1.0;
 
 struct Flags {
   std::string area;
@@ -102,26 +100,6 @@ std::vector<int> ReceiverIds(const Flags& f) {
   return ids;
 }
 
-// Each vehicle takes off from its own stand around the launch site and lands
-// there again: the launch-site waypoints at either end of each route are dropped,
-// or every vehicle would fly to the same point at the same altitude.
-void DropLaunchSite(const planner::SearchArea& area, planner::Point launch,
-                    std::vector<server::DroneMission>& missions) {
-  const auto at_launch = [&](const radio::Waypoint& waypoint) {
-    const common::EastNorth local = area.frame.ToLocal({waypoint.lat_deg, waypoint.lon_deg});
-    const double de = local.east_m - launch.x();
-    const double dn = local.north_m - launch.y();
-    return de * de + dn * dn < kLaunchSiteM * kLaunchSiteM;
-  };
-  for (server::DroneMission& mission : missions) {
-    std::vector<radio::Waypoint>& route = mission.waypoints;
-    while (route.size() > 1 && at_launch(route.back())) route.pop_back();
-    std::size_t first = 0;
-    while (first + 1 < route.size() && at_launch(route[first])) ++first;
-    route.erase(route.begin(), route.begin() + static_cast<std::ptrdiff_t>(first));
-  }
-}
-
 std::vector<server::DroneMission> PlanMissions(const Flags& f, const planner::SearchArea& area) {
   planner::FleetSpec fleet;
   fleet.receiver_ids = ReceiverIds(f);
@@ -140,9 +118,9 @@ std::vector<server::DroneMission> PlanMissions(const Flags& f, const planner::Se
   } catch (const std::invalid_argument& e) {
     throw UsageError(std::string("fireswarm serve: the planner refused the fleet: ") + e.what());
   }
-  std::vector<server::DroneMission> missions =
-      server::ToDroneMissions(plan, kMissionId, f.altitude_m, f.speed_mps);
-  DropLaunchSite(area, launch, missions);
+  std::vector<server::DroneMission> missions = server::WithoutLaunchSite(
+      server::ToDroneMissions(plan, kMissionId, f.altitude_m, f.speed_mps), area.frame,
+      {launch.x(), launch.y()});
   nlohmann::ordered_json line;
   line["event"] = "planned";
   line["drones"] = plan.drones.size();

@@ -1,6 +1,7 @@
 #include "fireswarm/server/mission_manager.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <utility>
 #include <variant>
@@ -12,6 +13,8 @@ namespace fireswarm::server {
 namespace {
 
 constexpr std::uint8_t kLaneStartFlag = 1U << 0;  // radio::Waypoint::flags bit 0
+// Waypoints this close to the launch site count as the launch site, m.
+constexpr double kLaunchSiteM = 1.0;
 
 }  // namespace
 
@@ -42,6 +45,23 @@ std::vector<DroneMission> ToDroneMissions(const planner::Plan& plan, std::uint16
       mission.waypoints.push_back(waypoint);
     }
     missions.push_back(std::move(mission));
+  }
+  return missions;
+}
+
+std::vector<DroneMission> WithoutLaunchSite(std::vector<DroneMission> missions,
+                                            const common::LocalFrame& frame,
+                                            common::EastNorth launch) {
+  const auto at_launch = [&](const radio::Waypoint& waypoint) {
+    const common::EastNorth local = frame.ToLocal({waypoint.lat_deg, waypoint.lon_deg});
+    return std::hypot(local.east_m - launch.east_m, local.north_m - launch.north_m) < kLaunchSiteM;
+  };
+  for (DroneMission& mission : missions) {
+    std::vector<radio::Waypoint>& route = mission.waypoints;
+    while (route.size() > 1 && at_launch(route.back())) route.pop_back();
+    std::size_t first = 0;
+    while (first + 1 < route.size() && at_launch(route[first])) ++first;
+    route.erase(route.begin(), route.begin() + static_cast<std::ptrdiff_t>(first));
   }
   return missions;
 }

@@ -158,5 +158,31 @@ TEST(ToDroneMissions, CarriesEveryWaypointWithLaneFlagsAltitudeAndSpeed) {
   EXPECT_THROW(ToDroneMissions(plan, 9, 60.0, 8.0), std::invalid_argument);
 }
 
+TEST(WithoutLaunchSite, DropsTheLaunchAtEitherEndAndKeepsReturnsBetweenSorties) {
+  const common::LocalFrame frame{common::LatLon{46.0, -74.5}};
+  const common::EastNorth launch{10.0, 20.0};
+  const auto at = [&](double east_m, double north_m) {
+    const common::LatLon p = frame.ToGeodetic({east_m, north_m});
+    radio::Waypoint w;
+    w.lat_deg = p.lat_deg;
+    w.lon_deg = p.lon_deg;
+    return w;
+  };
+  DroneMission mission;
+  mission.vehicle = 1;
+  // launch, lane, return between sorties, lane, launch, launch again
+  mission.waypoints = {at(10, 20),   at(300, 20), at(10.2, 20),
+                       at(300, 100), at(10, 20),  at(10, 20.5)};
+  DroneMission idle;
+  idle.vehicle = 2;
+  idle.waypoints = {at(10, 20), at(10, 20)};
+  const std::vector<DroneMission> out = WithoutLaunchSite({mission, idle}, frame, launch);
+  ASSERT_EQ(out[0].waypoints.size(), 3u);
+  EXPECT_EQ(out[0].waypoints[0], mission.waypoints[1]);
+  EXPECT_EQ(out[0].waypoints[1], mission.waypoints[2]) << "the return between sorties stays";
+  EXPECT_EQ(out[0].waypoints[2], mission.waypoints[3]);
+  EXPECT_EQ(out[1].waypoints.size(), 1u) << "a route of only the launch keeps one waypoint";
+}
+
 }  // namespace
 }  // namespace fireswarm::server

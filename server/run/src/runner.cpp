@@ -91,9 +91,10 @@ std::vector<server::DroneMission> PlanMissions(const Scenario& scenario) {
     const planner::Plan plan =
         planner::PlanSearch(scenario.area, MakeFleetSpec(scenario), scenario.fleet.planner,
                             static_cast<unsigned>(scenario.seed));
-    return internal::InAltitudeLayers(internal::WithoutLaunchSite(
-        scenario, server::ToDroneMissions(plan, kMissionId, scenario.fleet.altitude_m,
-                                          scenario.fleet.speed_mps)));
+    return internal::InAltitudeLayers(server::WithoutLaunchSite(
+        server::ToDroneMissions(plan, kMissionId, scenario.fleet.altitude_m,
+                                scenario.fleet.speed_mps),
+        scenario.area.frame, scenario.area.frame.ToLocal(scenario.fleet.launch)));
   } catch (const std::invalid_argument& e) {
     throw ScenarioError(scenario.source + ": fleet: the planner refused it: " + e.what());
   } catch (const std::runtime_error& e) {

@@ -22,8 +22,6 @@ constexpr double kFireCellM = 5.0;
 /// metres would let two climbing vehicles meet.
 constexpr double kMinStandSpacingM = 10.0;
 constexpr double kMinStandRingM = 8.0;
-/// Waypoints this close to the launch site count as the launch site, m.
-constexpr double kLaunchSiteM = 1.0;
 constexpr int kMaxDrawsPerFire = 100'000;
 /// Forward flight draws about this much more than hovering (measured: a 1.2 kg
 /// quadcopter at 10 m/s in sim2d averages ~180 W against 164 W hovering).
@@ -145,23 +143,6 @@ std::vector<FireSpec> ExpandFires(const Scenario& scenario) {
     }
   }
   return fires;
-}
-
-std::vector<server::DroneMission> WithoutLaunchSite(const Scenario& scenario,
-                                                    std::vector<server::DroneMission> missions) {
-  const sim2d::Vec2 launch = LaunchSite(scenario);
-  const auto at_launch = [&](const radio::Waypoint& waypoint) {
-    return (Local(scenario.area, {waypoint.lat_deg, waypoint.lon_deg}) - launch).norm() <
-           kLaunchSiteM;
-  };
-  for (server::DroneMission& mission : missions) {
-    std::vector<radio::Waypoint>& route = mission.waypoints;
-    while (route.size() > 1 && at_launch(route.back())) route.pop_back();
-    std::size_t first = 0;
-    while (first + 1 < route.size() && at_launch(route[first])) ++first;
-    route.erase(route.begin(), route.begin() + static_cast<std::ptrdiff_t>(first));
-  }
-  return missions;
 }
 
 std::vector<server::DroneMission> InAltitudeLayers(std::vector<server::DroneMission> missions) {

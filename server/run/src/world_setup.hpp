@@ -25,13 +25,6 @@ std::vector<FireSpec> ExpandFires(const Scenario& scenario);
 std::map<int, sim2d::Vec2> StandPositions(const Scenario& scenario,
                                           const std::vector<server::DroneMission>& missions);
 
-/// The missions as the vehicles fly them from their stands: the launch-site
-/// waypoints at either end of each route are dropped (every vehicle would fly to
-/// the same point at the same altitude; each takes off from and returns to its own
-/// stand instead).
-std::vector<server::DroneMission> WithoutLaunchSite(const Scenario& scenario,
-                                                    std::vector<server::DroneMission> missions);
-
 /// Altitude layers: the k-th drone (in mission order) flies every waypoint
 /// kAltitudeLayerM * (k % kAltitudeLayers) above the fleet's altitude, so two
 /// drones whose transits, investigations or returns cross never share an altitude

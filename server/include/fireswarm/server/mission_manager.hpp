@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "fireswarm/common/local_frame.hpp"
 #include "fireswarm/planner/plan.hpp"
 #include "fireswarm/radio/master_scheduler.hpp"
 #include "fireswarm/radio/messages.hpp"
@@ -34,6 +35,15 @@ struct DroneMission {
 /// hold (255 chunks).
 std::vector<DroneMission> ToDroneMissions(const planner::Plan& plan, std::uint16_t mission_id,
                                           double altitude_m, double speed_mps);
+
+/// The missions as the vehicles fly them from their own stands around the launch
+/// site: the waypoints within 1 m of `launch` (local metres of `frame`) at either
+/// end of each route are dropped, or every vehicle would fly to the same point at
+/// the same altitude. Returns to launch between sorties stay. A route of only the
+/// launch site keeps one waypoint.
+std::vector<DroneMission> WithoutLaunchSite(std::vector<DroneMission> missions,
+                                            const common::LocalFrame& frame,
+                                            common::EastNorth launch);
 
 /// Where one drone is in the mission.
 enum class DronePhase : std::uint8_t {
