@@ -183,8 +183,11 @@ void Vehicle::UpdateTelemetry(Nanos now) {
   if (state.has_position) flags |= radio::telemetry_flags::kGpsFix;
   telemetry.flags = flags;
   telemetry.mission_id = active_mission_;
+  // The mission's waypoint, also while the navigator flies a hold, a circle or
+  // the way back to the route.
+  const bool on_route = mode_ == radio::FlightMode::kSearch && !rejoining_ && navigator_;
   telemetry.waypoint_index =
-      navigator_ ? static_cast<std::uint16_t>(navigator_->waypoint_index()) : std::uint16_t{0};
+      static_cast<std::uint16_t>(on_route ? navigator_->waypoint_index() : resume_index_);
   endpoint_.SetTelemetry(telemetry);
 }
 

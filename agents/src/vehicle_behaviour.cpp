@@ -25,6 +25,10 @@ constexpr double kSlowDescentBelowM = 3.0;
 constexpr double kLandProgressM = 0.2;
 constexpr double kLandedAfterS = 3.0;
 constexpr double kNanosPerMicro = 1e3;
+// An investigation farther than this outside its circle flies there first on the
+// navigator at cruise speed, and circles from there on (the loiter's radial
+// control spirals in slowly from afar: a far investigator never arrived), m.
+constexpr double kLoiterCaptureM = 10.0;
 
 // A waypoint without an altitude (0) is flown at `default_altitude_m`.
 std::vector<RoutePoint> RouteOf(const Mission& mission, double default_altitude_m) {
@@ -71,9 +75,14 @@ void Vehicle::HoldHere(double altitude_m) {
 
 void Vehicle::EnterMode(FlightMode mode, Nanos now) {
   const Estimate& state = estimator_.estimate();
-  // Leaving the search (for a hold, a loiter, a return): remember where to resume.
+  // Leaving the search (for a hold, a loiter, a return): remember where to resume,
+  // and the very point it left the route (unless it was still rejoining it).
   if (mode_ == FlightMode::kSearch && mode != FlightMode::kSearch && navigator_) {
-    resume_index_ = navigator_->waypoint_index();
+    if (!rejoining_) {
+      resume_index_ = navigator_->waypoint_index();
+      rejoin_at_ = state.position;
+    }
+    rejoining_ = false;
   }
   mode_ = mode;
   mode_since_ = now;
@@ -86,7 +95,18 @@ void Vehicle::EnterMode(FlightMode mode, Nanos now) {
       HoldHere(Param(ParamId::kTakeoffAltitudeM));
       break;
     case FlightMode::kSearch:
-      StartRoute(RouteOf(*missions_.complete(), Param(ParamId::kTakeoffAltitudeM)), resume_index_);
+      // Back to the point it left the route first: straight to the next waypoint
+      // would cut the rest of the lane it was sweeping, unseen.
+      if (rejoin_at_) {
+        RoutePoint rejoin;
+        rejoin.position = *rejoin_at_;
+        rejoin.altitude_m = state.altitude_m;
+        StartRoute({rejoin}, 0);
+        rejoining_ = true;
+      } else {
+        StartRoute(RouteOf(*missions_.complete(), Param(ParamId::kTakeoffAltitudeM)),
+                   resume_index_);
+      }
       break;
     case FlightMode::kHold:
       HoldHere(state.altitude_m);
@@ -134,6 +154,8 @@ radio::CommandResult Vehicle::OnCommand(const radio::Command& command) {
       }
       active_mission_ = command.mission_id;
       resume_index_ = 0;
+      rejoin_at_.reset();
+      rejoining_ = false;
       return accept(Airborne() ? FlightMode::kSearch : FlightMode::kTakeoff);
     }
     case CommandType::kHold:
@@ -167,12 +189,27 @@ radio::CommandResult Vehicle::OnCommand(const radio::Command& command) {
       const double radius =
           command.radius_m > 0.0 ? command.radius_m : Param(ParamId::kLoiterRadiusM);
       const double altitude = command.altitude_m > 0.0 ? command.altitude_m : state.altitude_m;
-      loiter_.Start(estimator_.frame()->ToLocal({command.lat_deg, command.lon_deg}), radius,
-                    altitude);
+      const common::EastNorth center =
+          estimator_.frame()->ToLocal({command.lat_deg, command.lon_deg});
+      loiter_.Start(center, radius, altitude);
+      // Far away: first the straight way to the nearest point of the circle.
+      const double away_east = state.position_local.east_m - center.east_m;
+      const double away_north = state.position_local.north_m - center.north_m;
+      const double range = std::hypot(away_east, away_north);
       investigate_until_.reset();
       if (command.duration_s > 0)
         investigate_until_ = now_ + std::chrono::seconds(command.duration_s);
-      return accept(FlightMode::kInvestigate);
+      // Entering the mode remembers where the search was: the approach route after.
+      const CommandResult result = accept(FlightMode::kInvestigate);
+      investigate_approach_ = range > radius + kLoiterCaptureM;
+      if (investigate_approach_) {
+        RoutePoint entry;
+        entry.position = estimator_.frame()->ToGeodetic({center.east_m + away_east / range * radius,
+                                                         center.north_m + away_north / range * radius});
+        entry.altitude_m = altitude;
+        StartRoute({entry}, 0);
+      }
+      return result;
     }
     case CommandType::kAbort:
       // Stop the mission and come down where it is; on the ground, stay disarmed.
@@ -211,8 +248,9 @@ CascadeSetpoint Vehicle::Behave(Nanos now, std::optional<double> nav_dt_us) {
   const Estimate& state = estimator_.estimate();
   if (nav_dt_us) {
     const NavigationInput input = NavInput();
-    navigation_setpoint_ = mode_ == FlightMode::kInvestigate ? loiter_.Step(input, *nav_dt_us)
-                                                             : navigator_->Step(input, *nav_dt_us);
+    const bool circling = mode_ == FlightMode::kInvestigate && !investigate_approach_;
+    navigation_setpoint_ =
+        circling ? loiter_.Step(input, *nav_dt_us) : navigator_->Step(input, *nav_dt_us);
   }
   CascadeSetpoint setpoint;
   setpoint.roll_rad = navigation_setpoint_.roll_rad;
@@ -228,9 +266,25 @@ CascadeSetpoint Vehicle::Behave(Nanos now, std::optional<double> nav_dt_us) {
       }
       break;
     case FlightMode::kSearch:
-      if (navigator_->finished()) EnterMode(FlightMode::kReturnToLaunch, now);
+      if (rejoining_ && navigator_->finished()) {
+        // On the route again where it left it: on along the same segment.
+        rejoining_ = false;
+        navigator_->SetRoute(RouteOf(*missions_.complete(), Param(ParamId::kTakeoffAltitudeM)),
+                             resume_index_, *rejoin_at_);
+        rejoin_at_.reset();
+      } else if (navigator_->finished()) {
+        EnterMode(FlightMode::kReturnToLaunch, now);
+      }
       break;
     case FlightMode::kInvestigate:
+      if (investigate_approach_) {
+        const common::EastNorth center = loiter_.center();
+        const double range = std::hypot(center.east_m - state.position_local.east_m,
+                                        center.north_m - state.position_local.north_m);
+        if (range <= loiter_.radius_m() + kLoiterCaptureM || navigator_->finished()) {
+          investigate_approach_ = false;
+        }
+      }
       if (investigate_until_ && now >= *investigate_until_) {
         EnterMode(missions_.IsComplete(active_mission_) ? FlightMode::kSearch : FlightMode::kHold,
                   now);

@@ -127,11 +127,16 @@ class Vehicle final : public radio::VehicleRequestHandler {
   std::optional<Nanos> last_navigation_;
   std::optional<Nanos> last_telemetry_;
   std::optional<Nanos> investigate_until_;
+  bool investigate_approach_ = false;  ///< investigating, still on the way to the circle
   NavigationSetpoint navigation_setpoint_;
   ActuatorOutputs outputs_;
   std::optional<common::LatLon> home_;
   std::uint16_t active_mission_ = 0;
   std::size_t resume_index_ = 0;      ///< search waypoint to go back to after hold/investigate
+  /// Where it left the search route for a hold or an investigation: the search
+  /// flies back there first (rejoining_) and then on toward resume_index_.
+  std::optional<common::LatLon> rejoin_at_;
+  bool rejoining_ = false;
   double land_low_altitude_m_ = 0.0;  ///< lowest altitude seen while landing
   Nanos land_progress_at_{0};         ///< when it last fell kLandProgressM lower
   bool link_lost_ = false;
