@@ -161,8 +161,9 @@ TEST(FireFusion, OutlierOutsideGateStartsItsOwnTrack) {
   fusion.Add(Report(2, 1, 1.0, 0.5, 0.5));
   const Eigen::Vector2d before = fusion.tracks().front().position_ne_m;
 
-  // 30 m off with 3 m sigmas: far outside the chi-square gate and the minimum gate.
-  const FireReportResult outlier = fusion.Add(Report(3, 1, 2.0, 30.0, 0.0));
+  // Beyond the minimum gate with 3 m sigmas: far outside the chi-square gate too.
+  const double off_m = fusion.config().min_gate_m + 5.0;
+  const FireReportResult outlier = fusion.Add(Report(3, 1, 2.0, off_m, 0.0));
   EXPECT_EQ(outlier.outcome, FireReportOutcome::kNewTrack);
   EXPECT_EQ(outlier.track_id, 2);
   EXPECT_EQ(fusion.tracks().front().position_ne_m, before);  // not pulled by the outlier
@@ -197,11 +198,12 @@ TEST(FireFusion, MaximumGateKeepsWideCovariancesApart) {
 
 TEST(FireFusion, ReportJoinsTheNearestOfTwoGatedTracks) {
   FireFusion fusion;
+  const double apart_m = fusion.config().min_gate_m + 10.0;
   fusion.Add(Report(1, 1, 0.0, 0.0, 0.0));
-  fusion.Add(Report(1, 2, 1.0, 0.0, 25.0));
+  fusion.Add(Report(1, 2, 1.0, 0.0, apart_m));
   ASSERT_EQ(fusion.tracks().size(), 2U);
   // In the minimum gate of both; nearer to the second.
-  EXPECT_EQ(fusion.Add(Report(2, 1, 2.0, 0.0, 14.0)).track_id, 2);
+  EXPECT_EQ(fusion.Add(Report(2, 1, 2.0, 0.0, apart_m / 2.0 + 2.0)).track_id, 2);
 }
 
 TEST(FireFusion, DuplicateReportIsIgnored) {
@@ -471,7 +473,7 @@ TEST(FireFusion, InvalidReportsAreIgnored) {
 TEST(FireFusion, ConfigValidateNamesTheBadField) {
   FireFusionConfig config;
   EXPECT_NO_THROW(config.Validate());
-  config.min_gate_m = 60.0;  // above max_gate_m
+  config.min_gate_m = config.max_gate_m + 1.0;
   EXPECT_THROW(FireFusion{config}, std::invalid_argument);
   config = {};
   config.vehicle_bias_sigma_m = -1.0;

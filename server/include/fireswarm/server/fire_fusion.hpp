@@ -48,11 +48,16 @@ struct FireFusionConfig {
   /// point of a chi-square with 2 degrees of freedom.
   double gate_chi_square = 9.21;
   /// A report within this distance of a track is in its gate whatever the
-  /// covariances say, m: tiny covariances must not split one fire into two tracks.
-  double min_gate_m = 15.0;
+  /// covariances say, m. A report's covariance is its geolocation error only,
+  /// but a vehicle reports the centroid of the hot region it sees, and on a fire
+  /// of some size that is wherever the front burns hottest from its view: the
+  /// demo's 15 m fire, spreading in the wind, was reported up to 31 m apart by
+  /// four vehicles and split into three tracks with a 15 m gate. Fires closer
+  /// than this become one track (one incident for the crews).
+  double min_gate_m = 35.0;
   /// A report farther than this from a track is never in its gate, m: very
   /// wide covariances must not merge separate fires.
-  double max_gate_m = 50.0;
+  double max_gate_m = 60.0;
   /// One vehicle's GPS error that repeats in all its reports, 1-sigma per axis, m.
   /// 2.12 m is a 2.5 m CEP (agents::GeolocationSigmas::horizontal_m).
   double vehicle_bias_sigma_m = 2.12;
