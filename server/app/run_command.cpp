@@ -1,15 +1,29 @@
 // `fireswarm run SCENARIO.yaml`: flies a scenario headless in lockstep on simulated
 // time (the runner in server/run), writes the report (JSON), and optionally a JUnit
-// file and an SVG map. Exit 0 when every `expect` holds, 1 when one fails, 2 on bad
-// input (the scenario error names the file, key and problem). A progress line goes
-// to stderr only when stderr is a terminal.
+// file, an SVG map, an LCM log and live LCM traffic. Exit 0 when every `expect`
+// holds, 1 when one fails, 2 on bad input (the scenario error names the file, key
+// and problem). A progress line goes to stderr only when stderr is a terminal.
+//
+// LCM (--log, --lcm): the server is published through server::LcmBridge after
+// every lockstep step, at the bridge's rates in simulated time, every `utime` being
+// kUtimeAtSimZero + simulated microseconds: the same scenario gives the same log.
+// Operator commands arriving on --lcm are not taken (the scenario is the script).
 #include <unistd.h>
 
+#include <cerrno>
 #include <chrono>
+#include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
+#include <iterator>
+#include <optional>
+#include <stdexcept>
 #include <string>
+#include <system_error>
 #include <vector>
 
 #include "cli.hpp"
@@ -20,13 +34,19 @@
 #include "fireswarm/run/runner.hpp"
 #include "fireswarm/run/scenario.hpp"
 #include "fireswarm/run/svg_map.hpp"
+#include "fireswarm/server/lcm_bridge.hpp"
 
 namespace fireswarm::app {
 namespace {
 
 namespace po = boost::program_options;
+namespace fs = std::filesystem;
 
 constexpr const char* kName = "run";
+/// LCM utime of simulated time 0, us: the Unix epoch, so a run's utimes are its
+/// simulated microseconds (1970-01-01 to a tool that shows them as dates).
+constexpr std::int64_t kUtimeAtSimZero = 0;
+constexpr double kMicrosPerSecond = 1e6;
 constexpr int kBarWidth = 30;
 /// The progress line is redrawn at most this often (a small run goes at ~1000x).
 constexpr std::chrono::milliseconds kRedrawPeriod{100};
@@ -41,6 +61,120 @@ void DrawProgress(const run::RunProgress& p) {
                p.fires_total);
   std::fflush(stderr);
 }
+
+struct Flags {
+  std::string scenario;
+  std::string report;
+  std::string junit;
+  std::string svg;
+  std::string log;      ///< LCM event log, empty = none
+  std::string lcm_url;  ///< LCM provider to publish on, empty = none
+};
+
+// Bad flags end the command before the scenario is read or anything is written.
+void CheckFlags(const Flags& f, const po::variables_map& values) {
+  for (const auto& [flag, path] : {std::pair{"report", &f.report}, std::pair{"junit", &f.junit},
+                                   std::pair{"svg", &f.svg}, std::pair{"log", &f.log}}) {
+    if (values.count(flag) != 0 && path->empty()) {
+      throw UsageError(std::string("fireswarm run: --") + flag + " needs a file name");
+    }
+  }
+  if (values.count("lcm") != 0 && f.lcm_url.empty()) {
+    throw UsageError("fireswarm run: --lcm needs a URL, e.g. udpm://239.255.76.67:7667?ttl=0");
+  }
+  if (!f.log.empty()) {
+    const fs::path log(f.log);
+    const fs::path directory = log.has_parent_path() ? log.parent_path() : fs::path(".");
+    std::error_code error;
+    if (!fs::is_directory(directory, error)) {
+      throw UsageError("fireswarm run: --log " + f.log + ": the directory " + directory.string() +
+                       " does not exist");
+    }
+    if (fs::is_directory(log, error)) {
+      throw UsageError("fireswarm run: --log " + f.log + ": is a directory");
+    }
+  }
+}
+
+// --log and --lcm: the server published through server::LcmBridge on simulated
+// time. The bridge writes the log to a scratch sibling; Finish() hands it to
+// common::WriteFileAtomically, so a run that fails or is cut short leaves no log,
+// and a reader never sees half of one.
+class RunLcmOutput {
+ public:
+  /// Creates the scratch log and opens the LCM URL. Throws UsageError naming
+  /// --log or --lcm when either cannot be opened. Precondition: CheckFlags passed.
+  RunLcmOutput(const std::string& log_path, const std::string& url)
+      : log_path_(log_path), url_(url) {
+    server::LcmBridgeConfig config;
+    config.url = url;
+    if (!log_path.empty()) {
+      scratch_ = log_path_;
+      scratch_ += ".events." + std::to_string(::getpid());
+      // Created here, so that a failure of the bridge below can only be the URL's.
+      if (!std::ofstream(scratch_)) {
+        throw UsageError("fireswarm run: --log " + log_path + ": cannot create " +
+                         scratch_.string() + ": " + std::strerror(errno));
+      }
+      config.log_path = scratch_;
+    }
+    try {
+      bridge_.emplace(config);
+    } catch (const std::exception& e) {
+      RemoveScratch();
+      throw UsageError(std::string("fireswarm run: ") + (url.empty() ? "--log: " : "--lcm: ") +
+                       e.what());
+    }
+  }
+  ~RunLcmOutput() { RemoveScratch(); }
+  RunLcmOutput(const RunLcmOutput&) = delete;
+  RunLcmOutput& operator=(const RunLcmOutput&) = delete;
+
+  /// Publishes what is due at `t_s` (simulated s). Throws std::runtime_error when
+  /// the log cannot be written.
+  void Publish(double t_s, const server::Server& server) {
+    const std::int64_t utime =
+        kUtimeAtSimZero + static_cast<std::int64_t>(std::llround(t_s * kMicrosPerSecond));
+    bridge_->Publish(server, t_s, utime, kUtimeAtSimZero);
+  }
+
+  /// Closes the scratch log and writes it into place. Throws std::runtime_error
+  /// naming the log.
+  void Finish() {
+    published_ = bridge_->published();
+    bridge_.reset();  // closes the scratch log
+    if (log_path_.empty()) return;
+    std::ifstream in(scratch_, std::ios::binary);
+    const std::string events((std::istreambuf_iterator<char>(in)),
+                             std::istreambuf_iterator<char>());
+    if (!in) throw std::runtime_error(log_path_.string() + ": cannot read " + scratch_.string());
+    common::WriteFileAtomically(log_path_, events);
+    RemoveScratch();
+  }
+
+  /// What Finish() ended with: the messages published (and logged), where.
+  void PrintSummary() const {
+    if (!log_path_.empty()) {
+      std::cout << "  LCM log " << log_path_.string() << ": " << published_
+                << " messages, utime = simulated us\n";
+    }
+    if (!url_.empty()) {
+      std::cout << "  LCM: " << published_ << " messages published on " << url_ << "\n";
+    }
+  }
+
+ private:
+  void RemoveScratch() const {
+    std::error_code ignored;
+    if (!scratch_.empty()) fs::remove(scratch_, ignored);
+  }
+
+  fs::path log_path_;
+  fs::path scratch_;  // the bridge's log until Finish()
+  std::string url_;
+  std::optional<server::LcmBridge> bridge_;
+  std::uint64_t published_ = 0;
+};
 
 void PrintSummary(const run::RunResult& result) {
   const run::Report& report = result.report;
@@ -60,63 +194,77 @@ void PrintSummary(const run::RunResult& result) {
   }
 }
 
+// Flies the scenario, publishing on LCM when `lcm` is given; a progress line on
+// a terminal.
+run::RunResult Fly(const run::Scenario& scenario, RunLcmOutput* lcm) {
+  run::RunOptions run_options;
+  run::RunProgress last;
+  std::chrono::steady_clock::time_point drawn{};
+  if (isatty(STDERR_FILENO) != 0) {
+    run_options.progress = [&](const run::RunProgress& progress) {
+      last = progress;
+      const auto now = std::chrono::steady_clock::now();
+      if (now - drawn < kRedrawPeriod) return;
+      drawn = now;
+      DrawProgress(progress);
+    };
+  }
+  if (lcm != nullptr) {
+    run_options.on_step = [lcm](double t_s, const server::Server& server) {
+      lcm->Publish(t_s, server);
+    };
+  }
+  run::RunResult result = run::RunScenario(scenario, run_options);
+  if (run_options.progress) {
+    DrawProgress(last);
+    std::fputc('\n', stderr);
+  }
+  return result;
+}
+
 }  // namespace
 
 int RunRun(const std::vector<std::string>& args) {
-  std::string scenario_path;
-  std::string report_path;
-  std::string junit_path;
-  std::string svg_path;
+  Flags f;
   po::options_description options("run options");
-  options.add_options()("report", po::value(&report_path), "write the report (JSON) to this file")(
-      "junit", po::value(&junit_path), "write the expectations as a JUnit XML file")(
-      "svg", po::value(&svg_path), "write a map of the run (SVG)")(
-      "scenario", po::value(&scenario_path)->required(), "the scenario file (YAML)");
+  auto add = options.add_options();
+  add("report", po::value(&f.report), "write the report (JSON) to this file");
+  add("junit", po::value(&f.junit), "write the expectations as a JUnit XML file");
+  add("svg", po::value(&f.svg), "write a map of the run (SVG)");
+  add("log", po::value(&f.log)->value_name("FILE"),
+      "write an LCM log (for lcm-logplayer) of what the server publishes; utime = simulated us");
+  add("lcm", po::value(&f.lcm_url)->value_name("URL"),
+      "publish the same on LCM as the run goes (memq://, udpm://239.255.76.67:7667?ttl=0, ...)");
+  add("scenario", po::value(&f.scenario)->required(), "the scenario file (YAML)");
   po::positional_options_description positional;
   positional.add("scenario", 1);
   po::variables_map values;
   if (!ParseCommandLine(kName,
-                        "SCENARIO.yaml [--report out.json] [--junit out.xml] [--svg map.svg]",
+                        "SCENARIO.yaml [--report out.json] [--junit out.xml] [--svg map.svg] "
+                        "[--log out.lcmlog] [--lcm URL]",
                         options, positional, args, values)) {
     return kExitOk;
   }
-  for (const auto& [flag, path] : {std::pair{"report", &report_path},
-                                   std::pair{"junit", &junit_path}, std::pair{"svg", &svg_path}}) {
-    if (values.count(flag) != 0 && path->empty()) {
-      throw UsageError(std::string("fireswarm run: --") + flag + " needs a file name");
-    }
-  }
+  CheckFlags(f, values);
 
   run::Scenario scenario;
   run::RunResult result;
+  std::optional<RunLcmOutput> lcm;
   try {
-    scenario = run::LoadScenario(scenario_path);
-    run::RunOptions run_options;
-    run::RunProgress last;
-    std::chrono::steady_clock::time_point drawn{};
-    if (isatty(STDERR_FILENO) != 0) {
-      run_options.progress = [&](const run::RunProgress& progress) {
-        last = progress;
-        const auto now = std::chrono::steady_clock::now();
-        if (now - drawn < kRedrawPeriod) return;
-        drawn = now;
-        DrawProgress(progress);
-      };
-    }
-    result = run::RunScenario(scenario, run_options);
-    if (run_options.progress) {
-      DrawProgress(last);
-      std::fputc('\n', stderr);
-    }
+    scenario = run::LoadScenario(f.scenario);
+    if (!f.log.empty() || !f.lcm_url.empty()) lcm.emplace(f.log, f.lcm_url);
+    result = Fly(scenario, lcm ? &*lcm : nullptr);
   } catch (const run::ScenarioError& e) {
     throw UsageError(std::string("fireswarm run: ") + e.what());
   }
-  if (!report_path.empty()) {
-    common::WriteFileAtomically(report_path, run::ToJson(result.report).dump(2) + "\n");
+  if (lcm) lcm->Finish();
+  if (!f.report.empty()) {
+    common::WriteFileAtomically(f.report, run::ToJson(result.report).dump(2) + "\n");
   }
-  if (!junit_path.empty()) run::WriteJunit(result.report, junit_path);
-  if (!svg_path.empty()) run::WriteSvgMap(result.report, scenario, svg_path);
+  if (!f.junit.empty()) run::WriteJunit(result.report, f.junit);
+  if (!f.svg.empty()) run::WriteSvgMap(result.report, scenario, f.svg);
   PrintSummary(result);
+  if (lcm) lcm->PrintSummary();
   return result.report.AllExpectationsHold() ? kExitOk : kExitCheckFailed;
 }
 

@@ -16,7 +16,9 @@
 #include "fireswarm/agents/params.hpp"
 #include "fireswarm/common/camera_model.hpp"
 #include "fireswarm/common/local_frame.hpp"
+#include "fireswarm/server/vehicle_registry.hpp"
 #include "link_flags.hpp"
+#include "sim_link_flags.hpp"
 #include "sim_link_loop.hpp"
 #include "stop_signals.hpp"
 
@@ -24,12 +26,8 @@ namespace fireswarm::app {
 namespace {
 
 namespace po = boost::program_options;
-using radio::Nanos;
 
 constexpr const char* kName = "sim";
-constexpr int kMaxId = 254;
-constexpr double kMinSpeed = 1.0;
-constexpr double kMaxSpeed = 1000.0;
 // The world's fire grid: a square of this half-width around the launch site.
 constexpr double kWorldHalfWidthM = 2000.0;
 constexpr double kFireCellM = 5.0;
@@ -49,39 +47,31 @@ struct Flags {
   LinkFlags link;
   std::vector<std::string> fires;
   std::string camera = "seed";
-  std::uint64_t seed = 1;
-  std::optional<double> duration_s;
+  SimRunFlags run;
   std::optional<double> link_lost_timeout_s;
-  double speed = 1.0;
 };
-
-[[noreturn]] void BadFlag(const std::string& flag, const std::string& requirement,
-                          const std::string& got) {
-  ThrowBadFlag(kName, flag, requirement, got);
-}
 
 void CheckFlags(const Flags& f, const po::variables_map& values) {
   CheckLinkFlags(kName, f.link, values);
-  if (f.count < 1 || f.count > kMaxId) BadFlag("count", "in 1..254", std::to_string(f.count));
-  if (f.first_id < 1 || f.first_id + f.count - 1 > kMaxId) {
-    BadFlag("first-id", "in 1..254 with every ID up to first-id + count - 1 <= 254",
-            std::to_string(f.first_id));
+  if (f.count < 1 || f.count > server::kLastVehicleId) {
+    ThrowBadFlag(kName, "count", "in 1..254", std::to_string(f.count));
   }
-  if (f.launch.empty()) BadFlag("launch", "given, as LAT,LON in degrees", "");
-  if (!ParseLatLon(f.launch)) BadFlag("launch", "LAT,LON in degrees", f.launch);
+  if (f.first_id < server::kFirstVehicleId || f.first_id + f.count - 1 > server::kLastVehicleId) {
+    ThrowBadFlag(kName, "first-id", "in 1..254 with every ID up to first-id + count - 1 <= 254",
+                 std::to_string(f.first_id));
+  }
+  if (f.launch.empty()) ThrowBadFlag(kName, "launch", "given, as LAT,LON in degrees", "");
+  if (!ParseLatLon(f.launch)) ThrowBadFlag(kName, "launch", "LAT,LON in degrees", f.launch);
   for (const std::string& fire : f.fires) {
-    if (!ParseLatLon(fire)) BadFlag("fire", "LAT,LON in degrees", fire);
+    if (!ParseLatLon(fire)) ThrowBadFlag(kName, "fire", "LAT,LON in degrees", fire);
   }
   if (common::FindCameraModel(f.camera) == nullptr) {
-    BadFlag("camera", common::CameraModelNames(), f.camera);
+    ThrowBadFlag(kName, "camera", common::CameraModelNames(), f.camera);
   }
-  if (f.duration_s && !(*f.duration_s > 0.0)) BadFlag("duration-s", "> 0", FlagText(*f.duration_s));
-  if (!(f.speed >= kMinSpeed && f.speed <= kMaxSpeed)) {
-    BadFlag("speed", "in [1, 1000]", FlagText(f.speed));
-  }
+  CheckSimRunFlags(kName, f.run);
   if (f.link_lost_timeout_s &&
       !(*f.link_lost_timeout_s >= kMinLinkLostS && *f.link_lost_timeout_s <= kMaxLinkLostS)) {
-    BadFlag("link-lost-timeout-s", "in [2, 600]", FlagText(*f.link_lost_timeout_s));
+    ThrowBadFlag(kName, "link-lost-timeout-s", "in [2, 600]", FlagText(*f.link_lost_timeout_s));
   }
 }
 
@@ -104,7 +94,7 @@ sim2d::SimulationConfig WorldFor(const Flags& f) {
   const common::LatLon launch = *ParseLatLon(f.launch);
   const common::LocalFrame frame(launch);
   sim2d::SimulationConfig config;
-  config.world.seed = f.seed;
+  config.world.seed = f.run.seed;
   config.world.origin = launch;
   config.fire.origin_m = sim2d::Vec2(-kWorldHalfWidthM, -kWorldHalfWidthM);
   config.fire.width_m = 2.0 * kWorldHalfWidthM;
@@ -126,7 +116,7 @@ sim2d::SimulationConfig WorldFor(const Flags& f) {
     const sim2d::Vec2 centre(at.east_m, at.north_m);
     if (std::abs(at.east_m) > kWorldHalfWidthM - kFireRadiusM ||
         std::abs(at.north_m) > kWorldHalfWidthM - kFireRadiusM) {
-      BadFlag("fire", "within 2 km of the launch site", text);
+      ThrowBadFlag(kName, "fire", "within 2 km of the launch site", text);
     }
     // The centre and every cell centre of the disc, all at t = 0.
     const int reach = static_cast<int>(std::ceil(kFireRadiusM / kFireCellM));
@@ -146,14 +136,7 @@ sim2d::SimulationConfig WorldFor(const Flags& f) {
 std::vector<agents::VehicleConfig> VehiclesFor(const Flags& f) {
   std::vector<agents::VehicleConfig> vehicles;
   for (int i = 0; i < f.count; ++i) {
-    agents::VehicleConfig config;
-    config.id = static_cast<std::uint8_t>(f.first_id + i);
-    config.radio.id = config.id;
-    config.radio.mode = ModeOf(f.link);
-    config.radio.checksum = ChecksumOf(f.link);
-    config.radio.timing.baud = static_cast<int>(f.link.baud);
-    config.camera = common::CameraModelByName(f.camera);
-    vehicles.push_back(config);
+    vehicles.push_back(VehicleConfigFor(f.first_id + i, f.link, f.camera));
   }
   return vehicles;
 }
@@ -174,11 +157,11 @@ int RunSim(const std::vector<std::string>& args) {
       "ignite a fire there at t = 0 (repeatable), within 2 km of the launch site");
   const std::string camera_help = "thermal camera of every vehicle: " + common::CameraModelNames();
   add("camera", po::value(&f.camera)->default_value(f.camera), camera_help.c_str());
-  add("seed", po::value(&f.seed)->default_value(f.seed), "simulation seed");
-  add("speed", po::value(&f.speed)->default_value(f.speed),
+  add("seed", po::value(&f.run.seed)->default_value(f.run.seed), "simulation seed");
+  add("speed", po::value(&f.run.speed)->default_value(f.run.speed),
       "run the simulation this many times faster than the wall clock, 1..1000 (the vehicles' "
       "timers run that much faster than the server's)");
-  add("duration-s", po::value<double>()->notifier([&f](double v) { f.duration_s = v; }),
+  add("duration-s", po::value<double>()->notifier([&f](double v) { f.run.duration_s = v; }),
       "stop after this much simulated time, s (default: run until SIGINT or SIGTERM)");
   add("link-lost-timeout-s",
       po::value<double>()->notifier([&f](double v) { f.link_lost_timeout_s = v; }),
@@ -205,9 +188,7 @@ int RunSim(const std::vector<std::string>& args) {
       vehicle->OnParamWrite(write);
     }
   }
-  if (f.link.print_bound_port) std::cout << "bound_port=" << link.udp->local_port() << std::endl;
-  fleet.Run(*link.link, f.speed,
-            f.duration_s ? std::optional<Nanos>(radio::FromSeconds(*f.duration_s)) : std::nullopt);
+  RunFleet(fleet, link, f.link, f.run);
 
   nlohmann::ordered_json summary;
   summary["sim_seconds"] = fleet.simulation().time_s();

@@ -1,13 +1,26 @@
 // `fireswarm run` end to end through the built executable: exit codes 0 (every
-// expectation holds), 1 (one fails) and 2 (bad input), and the files it writes.
+// expectation holds), 1 (one fails) and 2 (bad input), and the files it writes,
+// the LCM log among them.
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <lcm/lcm-cpp.hpp>
+#include <map>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <string>
+#include <vector>
 
 #include "app/run_fireswarm.hpp"
+#include "fireswarm/fire_track_list_t.hpp"
+#include "fireswarm/mission_status_t.hpp"
+#include "fireswarm/radio_stats_t.hpp"
+#include "fireswarm/vehicle_state_t.hpp"
 
 namespace fireswarm::app {
 namespace {
@@ -30,6 +43,40 @@ std::string Scenario(double duration_s, const std::string& expect) {
          expect;
 }
 
+// One event of an LCM log, copied out of lcm::LogFile's buffer.
+struct LoggedEvent {
+  std::int64_t timestamp = 0;
+  std::string channel;
+  std::vector<std::uint8_t> data;
+};
+
+std::vector<LoggedEvent> ReadLcmLog(const std::string& path) {
+  std::vector<LoggedEvent> events;
+  lcm::LogFile log(path, "r");
+  EXPECT_TRUE(log.good()) << path;
+  if (!log.good()) return events;
+  while (const lcm::LogEvent* event = log.readNextEvent()) {
+    const auto* bytes = static_cast<const std::uint8_t*>(event->data);
+    events.push_back({event->timestamp, event->channel,
+                      std::vector<std::uint8_t>(bytes, bytes + event->datalen)});
+  }
+  return events;
+}
+
+// Decodes one event as `Message`; fails the test when it does not decode whole.
+template <typename Message>
+Message Decode(const LoggedEvent& event) {
+  Message message;
+  const int size = static_cast<int>(event.data.size());
+  EXPECT_EQ(message.decode(event.data.data(), 0, size), size) << event.channel;
+  return message;
+}
+
+std::string FileText(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
 class RunCommandTest : public CommandTest {
  protected:
   std::string Write(const std::string& name, const std::string& text) const {
@@ -45,6 +92,14 @@ class RunCommandTest : public CommandTest {
     std::string all;
     for (const std::string& line : result.lines) all += line + "\n";
     return all;
+  }
+  // The names in the scratch directory: what a run left behind.
+  std::set<std::string> Files() const {
+    std::set<std::string> names;
+    for (const auto& entry : std::filesystem::directory_iterator(dir_)) {
+      names.insert(entry.path().filename().string());
+    }
+    return names;
   }
 };
 
@@ -84,11 +139,12 @@ TEST_F(RunCommandTest, ExitsOneWhenAnExpectationFails) {
 TEST_F(RunCommandTest, ExitsTwoOnABadScenarioNamingFileAndKey) {
   const std::string scenario =
       Write("bad.yaml", Scenario(30.0, "  min_coverage: 0.5\n") + "fleeet: 3\n");
-  const RunResult result = RunFireswarm("run " + scenario + " --report " + PathOf("r.json"));
+  const RunResult result = RunFireswarm("run " + scenario + " --report " + PathOf("r.json") +
+                                        " --log " + PathOf("r.lcmlog"));
   EXPECT_EQ(result.exit_code, 2) << Output(result);
   EXPECT_TRUE(Mentions(result, "bad.yaml")) << Output(result);
   EXPECT_TRUE(Mentions(result, "fleeet")) << Output(result);
-  EXPECT_FALSE(std::filesystem::exists(PathOf("r.json")));
+  EXPECT_EQ(Files(), std::set<std::string>{"bad.yaml"}) << "nothing written";
 }
 
 TEST_F(RunCommandTest, ExitsTwoOnAMissingFileOrABadFlag) {
@@ -101,6 +157,101 @@ TEST_F(RunCommandTest, ExitsTwoOnAMissingFileOrABadFlag) {
   EXPECT_TRUE(Mentions(result, "reprot")) << Output(result);
   result = RunFireswarm("run");
   EXPECT_EQ(result.exit_code, 2) << Output(result);
+}
+
+TEST_F(RunCommandTest, LogsTheServerOnLcmInSimulatedTime) {
+  const std::string scenario = Write("ok.yaml", Scenario(60.0, "  no_collisions: true\n"));
+  const RunResult result = RunFireswarm("run " + scenario + " --report " + PathOf("r.json") +
+                                        " --log " + PathOf("run.lcmlog"));
+  ASSERT_EQ(result.exit_code, 0) << Output(result);
+  EXPECT_TRUE(Mentions(result, "LCM log " + PathOf("run.lcmlog"))) << Output(result);
+  EXPECT_EQ(Files(), (std::set<std::string>{"ok.yaml", "r.json", "run.lcmlog"}))
+      << "the scratch log is gone";
+  std::ifstream in(PathOf("r.json"));
+  const double sim_s = nlohmann::json::parse(in)["sim_seconds"].get<double>();
+  ASSERT_GT(sim_s, 50.0);
+
+  const std::vector<LoggedEvent> events = ReadLcmLog(PathOf("run.lcmlog"));
+  ASSERT_FALSE(events.empty());
+  std::map<std::string, int> per_channel;
+  std::map<int, int> states_per_vehicle;
+  std::int64_t previous_utime = -1;
+  std::int64_t previous_status_utime = -1;
+  for (const LoggedEvent& event : events) {
+    ++per_channel[event.channel];
+    // One time line: the event times never go back.
+    EXPECT_GE(event.timestamp, previous_utime) << event.channel;
+    previous_utime = event.timestamp;
+    if (event.channel == "FIRESWARM_VEHICLE_STATE") {
+      const auto state = Decode<fireswarm::vehicle_state_t>(event);
+      EXPECT_EQ(state.utime, event.timestamp);
+      EXPECT_TRUE(state.receiver_id == 1 || state.receiver_id == 2) << state.receiver_id;
+      ++states_per_vehicle[state.receiver_id];
+    } else if (event.channel == "FIRESWARM_MISSION_STATUS") {
+      const auto status = Decode<fireswarm::mission_status_t>(event);
+      EXPECT_EQ(status.utime, event.timestamp);
+      EXPECT_GT(status.utime, previous_status_utime);
+      previous_status_utime = status.utime;
+      // utime is simulated time: the mission started at t = 0.
+      EXPECT_NEAR(status.elapsed_s, static_cast<double>(status.utime) * 1e-6, 1e-6);
+    } else if (event.channel == "FIRESWARM_FIRE_TRACKS") {
+      EXPECT_EQ(Decode<fireswarm::fire_track_list_t>(event).utime, event.timestamp);
+    } else if (event.channel == "FIRESWARM_RADIO_STATS") {
+      EXPECT_EQ(Decode<fireswarm::radio_stats_t>(event).utime, event.timestamp);
+    } else {
+      ADD_FAILURE() << "unexpected channel " << event.channel;
+    }
+  }
+  // The whole run at the bridge's rates (LcmRates): 2 Hz per vehicle, 1 Hz, 0.5 Hz.
+  EXPECT_LE(events.front().timestamp, 1'000'000);
+  EXPECT_GE(events.back().timestamp, static_cast<std::int64_t>((sim_s - 1.0) * 1e6));
+  EXPECT_LE(events.back().timestamp, static_cast<std::int64_t>(sim_s * 1e6) + 1);
+  ASSERT_EQ(states_per_vehicle.size(), 2U);
+  for (const auto& [vehicle, count] : states_per_vehicle) {
+    EXPECT_NEAR(count, 2.0 * sim_s, 2.0) << "vehicle " << vehicle;
+  }
+  EXPECT_NEAR(per_channel["FIRESWARM_MISSION_STATUS"], sim_s, 1.0);
+  EXPECT_NEAR(per_channel["FIRESWARM_FIRE_TRACKS"], sim_s, 1.0);
+  EXPECT_NEAR(per_channel["FIRESWARM_RADIO_STATS"], 0.5 * sim_s, 1.0);
+}
+
+TEST_F(RunCommandTest, TheSameScenarioGivesTheSameLogAndPublishesLive) {
+  const std::string scenario = Write("ok.yaml", Scenario(30.0, "  no_collisions: true\n"));
+  const RunResult first = RunFireswarm("run " + scenario + " --log " + PathOf("a.lcmlog"));
+  const RunResult second =
+      RunFireswarm("run " + scenario + " --log " + PathOf("b.lcmlog") + " --lcm memq://");
+  ASSERT_EQ(first.exit_code, 0) << Output(first);
+  ASSERT_EQ(second.exit_code, 0) << Output(second);
+  EXPECT_TRUE(Mentions(second, "published on memq://")) << Output(second);
+  const std::string a = FileText(PathOf("a.lcmlog"));
+  EXPECT_FALSE(a.empty());
+  EXPECT_TRUE(a == FileText(PathOf("b.lcmlog"))) << "the logs differ";
+}
+
+TEST_F(RunCommandTest, ExitsTwoOnABadLcmUrlNamingTheFlagAndWritesNothing) {
+  const std::string scenario = Write("ok.yaml", Scenario(30.0, "  no_collisions: true\n"));
+  RunResult result = RunFireswarm("run " + scenario + " --lcm nosuchprovider://x --log " +
+                                  PathOf("r.lcmlog") + " --report " + PathOf("r.json"));
+  EXPECT_EQ(result.exit_code, 2) << Output(result);
+  EXPECT_TRUE(Mentions(result, "--lcm")) << Output(result);
+  EXPECT_TRUE(Mentions(result, "nosuchprovider://x")) << Output(result);
+  EXPECT_EQ(Files(), std::set<std::string>{"ok.yaml"}) << "nothing written";
+  result = RunFireswarm("run " + scenario + " --lcm");
+  EXPECT_EQ(result.exit_code, 2) << Output(result);
+  EXPECT_TRUE(Mentions(result, "--lcm")) << Output(result);
+}
+
+TEST_F(RunCommandTest, ExitsTwoOnALogInAMissingDirectoryNamingThePath) {
+  const std::string scenario = Write("ok.yaml", Scenario(30.0, "  no_collisions: true\n"));
+  const std::string log = PathOf("no_such_dir/r.lcmlog");
+  RunResult result = RunFireswarm("run " + scenario + " --log " + log);
+  EXPECT_EQ(result.exit_code, 2) << Output(result);
+  EXPECT_TRUE(Mentions(result, "--log " + log)) << Output(result);
+  EXPECT_TRUE(Mentions(result, "does not exist")) << Output(result);
+  result = RunFireswarm("run " + scenario + " --log " + dir_.string());
+  EXPECT_EQ(result.exit_code, 2) << Output(result);
+  EXPECT_TRUE(Mentions(result, "is a directory")) << Output(result);
+  EXPECT_EQ(Files(), std::set<std::string>{"ok.yaml"}) << "nothing written";
 }
 
 }  // namespace

@@ -314,6 +314,7 @@ RunResult RunScenario(const Scenario& scenario, const RunOptions& options) {
   while (run.time_s() < scenario.duration_s - kEps) {
     run.Step();
     const double t_s = run.time_s();
+    if (options.on_step) options.on_step(t_s, run.server());
     scorer.Observe(t_s, run.simulation(), run.server());
     if (t_s + kEps >= next_progress_s) {
       report_progress();

@@ -15,6 +15,7 @@
 
 #include "fireswarm/run/report.hpp"
 #include "fireswarm/run/scenario.hpp"
+#include "fireswarm/server/server.hpp"
 
 namespace fireswarm::run {
 
@@ -32,6 +33,10 @@ struct RunOptions {
   /// empty: no progress. Must not throw.
   std::function<void(const RunProgress&)> progress;
   double progress_interval_s = 5.0;
+  /// Called after every lockstep step with the simulated time reached, s, and the
+  /// server as it stands then (what an adapter publishes, e.g. on LCM); empty: none.
+  /// An exception it throws ends the run and leaves RunScenario.
+  std::function<void(double t_s, const server::Server& server)> on_step;
   /// After the mission is complete, the run goes on at most this long for fire
   /// reports still queued on the vehicles to reach the server, s.
   double drain_s = 30.0;
