@@ -92,14 +92,64 @@ MissionManager::MissionManager(radio::MasterScheduler& scheduler,
       throw std::invalid_argument("vehicle " + std::to_string(vehicle) +
                                   " has two missions in one plan");
     }
-    Drone drone;
-    drone.chunks = radio::SplitMission(mission.mission_id, mission.waypoints);
-    drone.chunk_rounds.assign(drone.chunks.size(), 0);
-    drone.progress.chunk_count = drone.chunks.size();
-    drone.progress.waypoint_count = mission.waypoints.size();
-    drone.mission = std::move(mission);
-    drones_.emplace(vehicle, std::move(drone));
+    drones_.emplace(vehicle, DroneFor(std::move(mission)));
   }
+}
+
+MissionManager::Drone MissionManager::DroneFor(DroneMission mission) {
+  Drone drone;
+  drone.chunks = radio::SplitMission(mission.mission_id, mission.waypoints);
+  drone.chunk_rounds.assign(drone.chunks.size(), 0);
+  drone.progress.chunk_count = drone.chunks.size();
+  drone.progress.waypoint_count = mission.waypoints.size();
+  drone.mission = std::move(mission);
+  return drone;
+}
+
+void MissionManager::Replace(DroneMission mission, bool send) {
+  const std::uint8_t vehicle = mission.vehicle;
+  Drone& drone = Find(vehicle);
+  if (mission.mission_id == drone.mission.mission_id) {
+    throw std::invalid_argument("vehicle " + std::to_string(vehicle) + " already has mission " +
+                                std::to_string(mission.mission_id));
+  }
+  // Answers to the old mission's requests are no longer this drone's business.
+  std::erase_if(pending_, [&](const auto& entry) { return entry.second.vehicle == vehicle; });
+  drone = DroneFor(std::move(mission));
+  if (!send) return;
+  for (std::size_t i = 0; i < drone.chunks.size(); ++i) SendChunk(drone, i);
+}
+
+void MissionManager::MarkLost(std::uint8_t vehicle, std::string why) {
+  Drone& drone = Find(vehicle);
+  std::erase_if(pending_, [&](const auto& entry) { return entry.second.vehicle == vehicle; });
+  Fail(drone, std::move(why));
+}
+
+std::vector<radio::Waypoint> MissionManager::Remaining(std::uint8_t vehicle,
+                                                       bool from_leg_start) const {
+  const Drone& drone = drones_.at(vehicle);
+  const std::vector<radio::Waypoint>& route = drone.mission.waypoints;
+  std::size_t first = drone.progress.waypoint_index;
+  if (from_leg_start && first > 0) --first;
+  if (first >= route.size()) return {};
+  return {route.begin() + static_cast<std::ptrdiff_t>(first), route.end()};
+}
+
+const DroneMission& MissionManager::mission_of(std::uint8_t vehicle) const {
+  const auto found = drones_.find(vehicle);
+  if (found == drones_.end()) {
+    throw std::out_of_range("vehicle " + std::to_string(vehicle) + " has no mission");
+  }
+  return found->second.mission;
+}
+
+MissionManager::Drone& MissionManager::Find(std::uint8_t vehicle) {
+  const auto found = drones_.find(vehicle);
+  if (found == drones_.end()) {
+    throw std::out_of_range("vehicle " + std::to_string(vehicle) + " has no mission");
+  }
+  return found->second;
 }
 
 void MissionManager::Begin() {
@@ -212,11 +262,7 @@ radio::Nanos MissionManager::NextWakeup() const {
 }
 
 void MissionManager::RestorePhase(std::uint8_t vehicle, DronePhase phase) {
-  const auto found = drones_.find(vehicle);
-  if (found == drones_.end()) {
-    throw std::out_of_range("vehicle " + std::to_string(vehicle) + " has no mission");
-  }
-  Drone& drone = found->second;
+  Drone& drone = Find(vehicle);
   drone.progress.phase = phase;
   if (phase != DronePhase::kUploading) drone.progress.chunks_acked = drone.chunks.size();
   drone.retry_start_at = phase == DronePhase::kStarting ? radio::Nanos{0} : radio::Nanos::max();

@@ -142,6 +142,13 @@ Server Server::Restore(const ServerConfig& config, const common::LocalFrame& fra
         const auto phase = static_cast<DronePhase>(data.at("phase").get<int>());
         server.mission_->RestorePhase(vehicle, phase);
         server.journaled_phases_[vehicle] = phase;
+      } else if (entry.kind == "handover") {
+        if (!server.mission_) throw std::runtime_error("handover before any mission");
+        server.mission_->MarkLost(data.at("lost").get<std::uint8_t>(),
+                                  data.at("why").get<std::string>());
+        for (DroneMission& m : MissionsFrom(data.at("drones"))) {
+          server.mission_->Replace(std::move(m), /*send=*/false);
+        }
       } else if (entry.kind == "state") {
         server.state_ = static_cast<MissionState>(data.at("state").get<int>());
       } else if (entry.kind == "abort") {
@@ -167,9 +174,12 @@ Server Server::Restore(const ServerConfig& config, const common::LocalFrame& fra
                                "): " + e.what());
     }
   }
-  // A mission still uploading when the server stopped starts its upload again:
-  // chunks are idempotent on the vehicle.
-  if (server.mission_ && server.state_ == MissionState::kUploading) server.mission_->Begin();
+  // Missions still uploading when the server stopped (the first, or one handed
+  // over) go up again: chunks are idempotent on the vehicle.
+  if (server.mission_ && (server.state_ == MissionState::kUploading ||
+                          server.state_ == MissionState::kRunning)) {
+    server.mission_->Begin();
+  }
   server.restoring_ = false;
   return server;
 }

@@ -132,7 +132,7 @@ struct Air {
       for (std::size_t i = 0; i < vehicles.size(); ++i) {
         bytes.clear();
         links[i]->Receive(t, bytes);
-        if (bytes.empty()) continue;
+        if (bytes.empty() || silent.contains(vehicles[i]->id())) continue;
         for (const radio::Burst& burst : vehicles[i]->endpoint().OnReceive(t, bytes)) {
           links[i]->Transmit(t, burst.start, burst.bytes);
         }
@@ -151,6 +151,7 @@ struct Air {
   radio::SimLink server_link;
   std::vector<std::unique_ptr<FakeVehicle>> vehicles;
   std::vector<std::unique_ptr<radio::SimLink>> links;
+  std::set<std::uint8_t> silent;  ///< vehicles that neither hear nor answer (gone)
 };
 
 }  // namespace fireswarm::server::testing

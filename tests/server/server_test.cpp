@@ -3,6 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <set>
+#include <string>
 #include <vector>
 
 #include "server/fake_fleet.hpp"
@@ -214,6 +217,99 @@ TEST(Server, RestoredFromItsJournalKeepsTracksAndPhasesAndUploadsNothingAgain) {
   EXPECT_GT(gap, 30'000);
   EXPECT_LT(gap, 35'536);
   EXPECT_EQ(restored.registry().ids(), fleet.server.registry().ids());
+}
+
+// Lanes 200 m apart, 1 km north, one per waypoint pair, lane starts flagged.
+std::vector<DroneMission> LaneMissions(const std::vector<std::uint8_t>& ids, int lanes_each) {
+  std::vector<DroneMission> missions;
+  int lane = 0;
+  for (const std::uint8_t id : ids) {
+    DroneMission m;
+    m.vehicle = id;
+    m.mission_id = 1;
+    for (int i = 0; i < lanes_each; ++i, ++lane) {
+      for (const double north : {0.0, 1000.0}) {
+        const common::LatLon p = kFrame.ToGeodetic({200.0 * lane, north});
+        radio::Waypoint w;
+        w.lat_deg = p.lat_deg;
+        w.lon_deg = p.lon_deg;
+        w.altitude_m = 60.0 + id;
+        w.speed_mps = 10.0;
+        w.flags = north == 0.0 ? 1 : 0;
+        m.waypoints.push_back(w);
+      }
+    }
+    missions.push_back(m);
+  }
+  return missions;
+}
+
+TEST(Server, ALostDronesLanesGoToTheOthersAsNewMissions) {
+  Air air(0.0);
+  Server server(ServerConfig{}, kFrame);
+  for (std::uint8_t id = 1; id <= 3; ++id) {
+    air.Add(id);
+    server.AddVehicle(id);
+    air.vehicle(id).endpoint().SetTelemetry(Searching(400.0 * (id - 1), 0, 1'000));
+  }
+  server.LoadMission(LaneMissions({1, 2, 3}, 2));
+  ASSERT_TRUE(server.Handle({OperatorCommand::Kind::kStart, 0, {}, 0.0, "test"}, Nanos{0}));
+  air.Run(server, 60 * kSecond, [&] { return server.state() == MissionState::kRunning; });
+  ASSERT_EQ(server.state(), MissionState::kRunning);
+
+  // Vehicle 2 is gone: after the registry's lost time its two lanes are flown by 1 and 3.
+  air.silent.insert(2);
+  const Nanos gone_at = air.channel.now();
+  air.Run(server, gone_at + 30 * kSecond, [&] {
+    return server.mission()->progress(2).phase == DronePhase::kFailed &&
+           server.mission()->progress(1).phase == DronePhase::kFlying &&
+           server.mission()->progress(3).phase == DronePhase::kFlying &&
+           server.mission()->mission_of(1).mission_id != 1 &&
+           server.mission()->mission_of(3).mission_id != 1;
+  });
+  const double lost_after_s = ServerConfig{}.link.lost_after_s;
+  EXPECT_GE(radio::ToSeconds(air.channel.now() - gone_at), lost_after_s);
+  ASSERT_EQ(server.mission()->progress(2).phase, DronePhase::kFailed);
+  EXPECT_NE(server.mission()->progress(2).failure.find("lost"), std::string::npos);
+  // Each of the others stores and started its new mission: its own lanes, then one of 2's.
+  std::set<std::uint16_t> ids;
+  int lanes_given = 0;
+  for (const std::uint8_t id : {std::uint8_t{1}, std::uint8_t{3}}) {
+    const FakeVehicle& vehicle = air.vehicle(id);
+    const DroneMission& mission = server.mission()->mission_of(id);
+    ids.insert(mission.mission_id);
+    EXPECT_TRUE(vehicle.complete());
+    // As the wire carries them (1e-7 deg).
+    ASSERT_EQ(vehicle.waypoints().size(), mission.waypoints.size());
+    for (std::size_t i = 0; i < mission.waypoints.size(); ++i) {
+      EXPECT_NEAR(vehicle.waypoints()[i].lat_deg, mission.waypoints[i].lat_deg, 1e-6);
+      EXPECT_NEAR(vehicle.waypoints()[i].lon_deg, mission.waypoints[i].lon_deg, 1e-6);
+      EXPECT_EQ(vehicle.waypoints()[i].flags, mission.waypoints[i].flags);
+    }
+    const radio::Command* start = LastOf(vehicle, radio::CommandType::kStartMission);
+    ASSERT_NE(start, nullptr);
+    EXPECT_EQ(start->mission_id, mission.mission_id);
+    ASSERT_EQ(mission.waypoints.size(), 6U) << "own 2 lanes and one of vehicle 2's";
+    const common::EastNorth given =
+        kFrame.ToLocal({mission.waypoints[4].lat_deg, mission.waypoints[4].lon_deg});
+    EXPECT_TRUE(std::abs(given.east_m - 400.0) < 1.0 || std::abs(given.east_m - 600.0) < 1.0)
+        << given.east_m;
+    EXPECT_DOUBLE_EQ(mission.waypoints[4].altitude_m, 60.0 + id);  // its own layer
+    lanes_given += 1;
+  }
+  EXPECT_EQ(ids.size(), 2U);
+  EXPECT_EQ(ids.count(1), 0U);
+  EXPECT_EQ(lanes_given, 2);
+
+  // A restarted server knows: 2 lost, the new missions; it uploads nothing again.
+  std::vector<JournalEntry> journal = server.TakeJournalEntries();
+  Server restored = Server::Restore(ServerConfig{}, kFrame, journal);
+  EXPECT_EQ(restored.mission()->progress(2).phase, DronePhase::kFailed);
+  for (const std::uint8_t id : {std::uint8_t{1}, std::uint8_t{3}}) {
+    EXPECT_EQ(restored.mission()->mission_of(id).waypoints,
+              server.mission()->mission_of(id).waypoints);
+    EXPECT_EQ(restored.mission()->progress(id).phase, DronePhase::kFlying);
+  }
 }
 
 TEST(Server, RestoreNamesTheBadEntry) {

@@ -100,6 +100,22 @@ class MissionManager {
   /// std::out_of_range for a vehicle without a mission.
   void RestorePhase(std::uint8_t vehicle, DronePhase phase);
 
+  /// Gives a drone a new mission (another mission ID; the waypoints it flies
+  /// from where it is): its chunks go up and it is told to start, as at the
+  /// mission's start, and its progress counts the new mission. `send` false only
+  /// records it (a restored server). Throws std::out_of_range for a vehicle
+  /// without a mission and std::invalid_argument for the same mission ID.
+  void Replace(DroneMission mission, bool send = true);
+  /// Gives a drone up as lost: kFailed with `why`, its requests forgotten,
+  /// nothing sent. Throws std::out_of_range for a vehicle without a mission.
+  void MarkLost(std::uint8_t vehicle, std::string why);
+  /// The waypoints a drone has still to fly by its telemetry: from the one it
+  /// flies to, or with `from_leg_start` from the one before (the leg it is on).
+  /// Throws std::out_of_range for a vehicle without a mission.
+  std::vector<radio::Waypoint> Remaining(std::uint8_t vehicle, bool from_leg_start) const;
+  /// The mission a drone flies now. Throws std::out_of_range as progress().
+  const DroneMission& mission_of(std::uint8_t vehicle) const;
+
   const DroneProgress& progress(std::uint8_t vehicle) const;
   std::vector<std::uint8_t> vehicles() const;  ///< ascending
   /// True when every drone is flying, done or failed (none still uploading/starting).
@@ -115,6 +131,8 @@ class MissionManager {
     DroneProgress progress;
     radio::Nanos retry_start_at = radio::Nanos::max();
   };
+  static Drone DroneFor(DroneMission mission);
+  Drone& Find(std::uint8_t vehicle);
   void SendChunk(Drone& drone, std::size_t index);
   void SendStart(Drone& drone);
   void OnFinished(const radio::RequestFinished& finished);

@@ -12,6 +12,9 @@
 // from an investigator that did get near it, is rejected (the hot spot was not
 // seen again: a sun-heated rock). An investigator that never got near (called
 // away, lost) judges nothing: the track stays tentative.
+//
+// A lost drone: when a flying drone has not been heard for the registry's lost
+// time, its remaining lanes go to the drones still searching (server_handover.cpp).
 #pragma once
 
 #include <cstdint>
@@ -27,6 +30,7 @@
 #include "fireswarm/common/local_frame.hpp"
 #include "fireswarm/radio/master_scheduler.hpp"
 #include "fireswarm/server/fire_fusion.hpp"
+#include "fireswarm/server/handover.hpp"
 #include "fireswarm/server/mission_manager.hpp"
 #include "fireswarm/server/vehicle_registry.hpp"
 
@@ -49,6 +53,9 @@ struct ServerConfig {
   /// to either side at 60 m).
   double investigate_near_m = 60.0;
   double investigate_radius_m = 0.0;  ///< 0: the vehicle's own loiter radius parameter
+  /// A flying drone the registry marks lost is given up, and the lanes it had
+  /// still to fly go to the drones still searching as new missions (handover.hpp).
+  bool hand_over_lost_lanes = true;
   /// A tentative track is rejected this long after its investigation ended when
   /// the investigator did not report it again, s (reports still in the air).
   double reject_grace_s = 10.0;
@@ -169,6 +176,9 @@ class Server {
   std::optional<std::uint8_t> BestPlacedFor(const Eigen::Vector2d& point_ne_m,
                                             std::uint8_t reporter, double now_s) const;
   void SendToAll(radio::CommandType type);
+  void HandOverLostDrones(double now_s);
+  void HandOver(std::uint8_t lost, double now_s);
+  std::vector<Taker> TakersFor(std::uint8_t lost, double now_s) const;
   radio::Nanos VerdictDue(const Investigation& investigation) const;
   void CheckInvestigations(radio::Nanos now);
   void UpdateState(double now_s);

@@ -1,0 +1,45 @@
+// Handing a lost drone's lanes to the drones still flying. Pure: waypoints in,
+// waypoints out, in the mission area's local frame.
+//
+// The lost drone's remaining route is cut into its search lanes (a waypoint with
+// the lane-start flag and the one after it); the transit legs between them are
+// dropped, each taker flies its own. Lanes go out in the lost drone's order, in
+// runs: the taker whose route ends nearest takes lanes until its work (its own
+// remaining route, the transits and the lanes) reaches an equal share of the
+// whole, then the taker nearest to the next lane, and so on (takers already over
+// the share take none while another can). Each taker's new route is its own remaining
+// waypoints, then its lanes, flown at its own altitude and speed (altitude layers
+// keep drones apart). Lanes are flown in the direction nearer to the taker.
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <map>
+#include <vector>
+
+#include "fireswarm/common/local_frame.hpp"
+#include "fireswarm/radio/messages.hpp"
+
+namespace fireswarm::server {
+
+/// A drone that can take lanes.
+struct Taker {
+  std::uint8_t vehicle = 0;
+  /// Where it is now, local (north, east) m.
+  Eigen::Vector2d position_ne_m = Eigen::Vector2d::Zero();
+  /// The waypoints it still has to fly, the one it flies to first. May be empty
+  /// (a drone whose lanes are all flown).
+  std::vector<radio::Waypoint> remaining;
+  /// Altitude and speed of the lanes it takes (its own).
+  double altitude_m = 0.0;
+  double speed_mps = 0.0;
+};
+
+/// The lost drone's `orphaned` waypoints (from the one it was flying away from)
+/// shared out among `takers` (not empty). Returns each taker's new route, for the
+/// takers that got at least one lane. Returns nothing when `orphaned` has no lane.
+std::map<std::uint8_t, std::vector<radio::Waypoint>> HandOverLanes(
+    const std::vector<radio::Waypoint>& orphaned, const std::vector<Taker>& takers,
+    const common::LocalFrame& frame);
+
+}  // namespace fireswarm::server

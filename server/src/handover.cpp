@@ -1,0 +1,135 @@
+#include "fireswarm/server/handover.hpp"
+
+#include <algorithm>
+#include <limits>
+#include <utility>
+
+namespace fireswarm::server {
+namespace {
+
+constexpr std::uint8_t kLaneStartFlag = 1;  // radio::Waypoint::flags bit 0
+
+struct Lane {
+  Eigen::Vector2d start_ne_m;
+  Eigen::Vector2d end_ne_m;
+};
+
+// How far a taker has to fly, and where its route ends, as lanes are added.
+struct Load {
+  double work_m = 0.0;
+  Eigen::Vector2d end_ne_m = Eigen::Vector2d::Zero();
+  std::vector<radio::Waypoint> added;
+};
+
+Eigen::Vector2d NorthEastOf(const common::LocalFrame& frame, const radio::Waypoint& waypoint) {
+  const common::EastNorth p = frame.ToLocal({waypoint.lat_deg, waypoint.lon_deg});
+  return {p.north_m, p.east_m};
+}
+
+std::vector<Lane> LanesOf(const std::vector<radio::Waypoint>& route,
+                          const common::LocalFrame& frame) {
+  std::vector<Lane> lanes;
+  for (std::size_t i = 0; i + 1 < route.size(); ++i) {
+    if ((route[i].flags & kLaneStartFlag) == 0) continue;
+    lanes.push_back({NorthEastOf(frame, route[i]), NorthEastOf(frame, route[i + 1])});
+  }
+  return lanes;
+}
+
+Load LoadOf(const Taker& taker, const common::LocalFrame& frame) {
+  Load load;
+  load.end_ne_m = taker.position_ne_m;
+  for (const radio::Waypoint& waypoint : taker.remaining) {
+    const Eigen::Vector2d next = NorthEastOf(frame, waypoint);
+    load.work_m += (next - load.end_ne_m).norm();
+    load.end_ne_m = next;
+  }
+  return load;
+}
+
+double Reach(const Load& load, const Lane& lane) {
+  return std::min((lane.start_ne_m - load.end_ne_m).norm(), (lane.end_ne_m - load.end_ne_m).norm());
+}
+
+// The taker nearest to `lane` among those not yet done (none: the least loaded).
+std::size_t Nearest(const std::vector<Load>& loads, const std::vector<bool>& done,
+                    const Lane& lane) {
+  std::size_t best = loads.size();
+  double best_reach = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < loads.size(); ++i) {
+    if (done[i]) continue;
+    const double reach = Reach(loads[i], lane);
+    if (reach < best_reach) {
+      best_reach = reach;
+      best = i;
+    }
+  }
+  if (best < loads.size()) return best;
+  best = 0;
+  for (std::size_t i = 1; i < loads.size(); ++i) {
+    if (loads[i].work_m < loads[best].work_m) best = i;
+  }
+  return best;
+}
+
+radio::Waypoint WaypointAt(const common::LocalFrame& frame, const Eigen::Vector2d& ne_m,
+                           const Taker& taker, bool lane_start) {
+  const common::LatLon p = frame.ToGeodetic({ne_m.y(), ne_m.x()});
+  radio::Waypoint waypoint;
+  waypoint.lat_deg = p.lat_deg;
+  waypoint.lon_deg = p.lon_deg;
+  waypoint.altitude_m = taker.altitude_m;
+  waypoint.speed_mps = taker.speed_mps;
+  waypoint.flags = lane_start ? kLaneStartFlag : 0;
+  return waypoint;
+}
+
+}  // namespace
+
+std::map<std::uint8_t, std::vector<radio::Waypoint>> HandOverLanes(
+    const std::vector<radio::Waypoint>& orphaned, const std::vector<Taker>& takers,
+    const common::LocalFrame& frame) {
+  const std::vector<Lane> lanes = LanesOf(orphaned, frame);
+  if (lanes.empty() || takers.empty()) return {};
+  std::vector<Load> loads;
+  double total_m = 0.0;
+  for (const Taker& taker : takers) {
+    loads.push_back(LoadOf(taker, frame));
+    total_m += loads.back().work_m;
+  }
+  for (const Lane& lane : lanes) total_m += (lane.end_ne_m - lane.start_ne_m).norm();
+  const double share_m = total_m / static_cast<double>(takers.size());
+
+  // Runs of neighbouring lanes: the nearest taker takes lanes until its work
+  // reaches the share, then the one nearest to the next lane, and so on.
+  std::vector<bool> done(loads.size());
+  for (std::size_t i = 0; i < loads.size(); ++i) done[i] = loads[i].work_m >= share_m;
+  std::size_t taker = Nearest(loads, done, lanes.front());
+  for (const Lane& lane : lanes) {
+    if (loads[taker].work_m >= share_m) {
+      done[taker] = true;
+      // The last taker with work to take takes the rest.
+      if (std::ranges::find(done, false) != done.end()) taker = Nearest(loads, done, lane);
+    }
+    Load& load = loads[taker];
+    // Flown from whichever end is nearer.
+    Eigen::Vector2d start = lane.start_ne_m;
+    Eigen::Vector2d end = lane.end_ne_m;
+    if ((end - load.end_ne_m).norm() < (start - load.end_ne_m).norm()) std::swap(start, end);
+    load.added.push_back(WaypointAt(frame, start, takers[taker], /*lane_start=*/true));
+    load.added.push_back(WaypointAt(frame, end, takers[taker], /*lane_start=*/false));
+    load.work_m += (start - load.end_ne_m).norm() + (end - start).norm();
+    load.end_ne_m = end;
+  }
+
+  std::map<std::uint8_t, std::vector<radio::Waypoint>> routes;
+  for (std::size_t i = 0; i < takers.size(); ++i) {
+    if (loads[i].added.empty()) continue;
+    std::vector<radio::Waypoint> route = takers[i].remaining;
+    route.insert(route.end(), loads[i].added.begin(), loads[i].added.end());
+    routes[takers[i].vehicle] = std::move(route);
+  }
+  return routes;
+}
+
+}  // namespace fireswarm::server

@@ -1,0 +1,70 @@
+// The server's side of a lost drone: when a flying drone has not been heard for
+// the registry's lost time, it is given up and the lanes it had still to fly go
+// to the drones still searching (handover.hpp says how they are shared out), each
+// as a new mission uploaded and started like the first.
+#include <string>
+
+#include "fireswarm/server/handover.hpp"
+#include "fireswarm/server/server.hpp"
+#include "server_journal_json.hpp"
+
+namespace fireswarm::server {
+
+void Server::HandOverLostDrones(double now_s) {
+  if (!mission_ || !config_.hand_over_lost_lanes || state_ != MissionState::kRunning) return;
+  for (const std::uint8_t id : mission_->vehicles()) {
+    if (mission_->progress(id).phase != DronePhase::kFlying) continue;
+    if (registry_.LinkAt(id, now_s) != LinkState::kLost) continue;
+    HandOver(id, now_s);
+  }
+}
+
+std::vector<Taker> Server::TakersFor(std::uint8_t lost, double now_s) const {
+  std::vector<Taker> takers;
+  for (const std::uint8_t id : mission_->vehicles()) {
+    if (id == lost || mission_->progress(id).phase != DronePhase::kFlying) continue;
+    if (registry_.LinkAt(id, now_s) != LinkState::kOk) continue;
+    const std::optional<radio::Telemetry>& telemetry = registry_.state(id).telemetry;
+    if (!telemetry || (telemetry->flags & radio::telemetry_flags::kLowBattery) != 0) continue;
+    if (telemetry->mode != radio::FlightMode::kSearch &&
+        telemetry->mode != radio::FlightMode::kInvestigate) {
+      continue;  // returning, landing: its flight is over
+    }
+    Taker taker;
+    taker.vehicle = id;
+    const common::EastNorth here = frame_.ToLocal({telemetry->lat_deg, telemetry->lon_deg});
+    taker.position_ne_m = Eigen::Vector2d(here.north_m, here.east_m);
+    taker.remaining = mission_->Remaining(id, /*from_leg_start=*/false);
+    const std::vector<radio::Waypoint>& own = mission_->mission_of(id).waypoints;
+    taker.altitude_m = own.empty() ? telemetry->altitude_m : own.front().altitude_m;
+    taker.speed_mps = own.empty() ? 0.0 : own.front().speed_mps;
+    takers.push_back(std::move(taker));
+  }
+  return takers;
+}
+
+void Server::HandOver(std::uint8_t lost, double now_s) {
+  const std::vector<radio::Waypoint> orphaned = mission_->Remaining(lost, /*from_leg_start=*/true);
+  const std::string why = "lost: not heard for " +
+                          std::to_string(static_cast<int>(config_.link.lost_after_s)) + " s";
+  mission_->MarkLost(lost, why);
+  // New mission IDs above every one in use, so no vehicle takes one for another.
+  std::uint16_t next_id = 0;
+  for (const std::uint8_t id : mission_->vehicles()) {
+    next_id = std::max(next_id, mission_->mission_of(id).mission_id);
+  }
+  nlohmann::json drones = nlohmann::json::array();
+  for (auto& [vehicle, route] : HandOverLanes(orphaned, TakersFor(lost, now_s), frame_)) {
+    DroneMission mission;
+    mission.vehicle = vehicle;
+    mission.mission_id = ++next_id;
+    mission.waypoints = std::move(route);
+    drones.push_back({{"vehicle", mission.vehicle},
+                      {"mission_id", mission.mission_id},
+                      {"waypoints", WaypointsJson(mission.waypoints)}});
+    mission_->Replace(std::move(mission));
+  }
+  Record(now_s, "handover", {{"lost", lost}, {"why", why}, {"drones", std::move(drones)}});
+}
+
+}  // namespace fireswarm::server

@@ -1,0 +1,114 @@
+#include "fireswarm/server/handover.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <set>
+#include <utility>
+#include <vector>
+
+namespace fireswarm::server {
+namespace {
+
+const common::LocalFrame kFrame{common::LatLon{46.0, -74.5}};
+
+radio::Waypoint At(double east_m, double north_m, bool lane_start, double altitude_m = 60.0) {
+  const common::LatLon p = kFrame.ToGeodetic({east_m, north_m});
+  radio::Waypoint w;
+  w.lat_deg = p.lat_deg;
+  w.lon_deg = p.lon_deg;
+  w.altitude_m = altitude_m;
+  w.speed_mps = 10.0;
+  w.flags = lane_start ? 1 : 0;
+  return w;
+}
+
+// A lawnmower of `lanes` north-south lanes 1 km long, 80 m apart from `east_m`.
+std::vector<radio::Waypoint> Lawnmower(double east_m, int lanes, double altitude_m) {
+  std::vector<radio::Waypoint> route;
+  for (int i = 0; i < lanes; ++i) {
+    const double e = east_m + 80.0 * i;
+    const bool up = i % 2 == 0;
+    route.push_back(At(e, up ? 0.0 : 1000.0, true, altitude_m));
+    route.push_back(At(e, up ? 1000.0 : 0.0, false, altitude_m));
+  }
+  return route;
+}
+
+Taker TakerAt(std::uint8_t id, double east_m, std::vector<radio::Waypoint> remaining,
+              double altitude_m) {
+  Taker t;
+  t.vehicle = id;
+  t.position_ne_m = Eigen::Vector2d(0.0, east_m);
+  t.remaining = std::move(remaining);
+  t.altitude_m = altitude_m;
+  t.speed_mps = 9.0;
+  return t;
+}
+
+// Lane key: its two ends rounded to the metre, in either direction.
+std::set<std::pair<long, long>> LanesIn(const std::vector<radio::Waypoint>& route) {
+  std::set<std::pair<long, long>> lanes;
+  for (std::size_t i = 0; i + 1 < route.size(); ++i) {
+    if ((route[i].flags & 1) == 0) continue;
+    const common::EastNorth a = kFrame.ToLocal({route[i].lat_deg, route[i].lon_deg});
+    const common::EastNorth b = kFrame.ToLocal({route[i + 1].lat_deg, route[i + 1].lon_deg});
+    const long east = std::lround(a.east_m);
+    EXPECT_EQ(east, std::lround(b.east_m)) << "a lane is north-south";
+    lanes.insert({east, std::lround(std::max(a.north_m, b.north_m))});
+  }
+  return lanes;
+}
+
+TEST(HandOverLanes, EveryLostLaneGoesToExactlyOneTakerAfterItsOwnRoute) {
+  // The lost drone had 6 lanes left in the middle; takers on either side.
+  const std::vector<radio::Waypoint> orphaned = Lawnmower(1000.0, 6, 63.0);
+  const std::vector<radio::Waypoint> west_own = Lawnmower(0.0, 2, 60.0);
+  const std::vector<radio::Waypoint> east_own = Lawnmower(2000.0, 2, 66.0);
+  const auto routes = HandOverLanes(
+      orphaned, {TakerAt(1, 0.0, west_own, 60.0), TakerAt(2, 2000.0, east_own, 66.0)}, kFrame);
+  ASSERT_EQ(routes.size(), 2U);
+  const std::vector<radio::Waypoint>& west = routes.at(1);
+  const std::vector<radio::Waypoint>& east = routes.at(2);
+  // Own waypoints first, unchanged.
+  ASSERT_GT(west.size(), west_own.size());
+  EXPECT_TRUE(std::equal(west_own.begin(), west_own.end(), west.begin()));
+  EXPECT_TRUE(std::equal(east_own.begin(), east_own.end(), east.begin()));
+  // The lost lanes, each once, between them; at the taker's own altitude and speed.
+  const std::vector<radio::Waypoint> west_added(west.begin() + 4, west.end());
+  const std::vector<radio::Waypoint> east_added(east.begin() + 4, east.end());
+  std::set<std::pair<long, long>> given = LanesIn(west_added);
+  const std::set<std::pair<long, long>> east_lanes = LanesIn(east_added);
+  for (const auto& lane : east_lanes) EXPECT_TRUE(given.insert(lane).second) << "given twice";
+  EXPECT_EQ(given, LanesIn(orphaned));
+  for (const radio::Waypoint& w : west_added) EXPECT_DOUBLE_EQ(w.altitude_m, 60.0);
+  for (const radio::Waypoint& w : east_added) EXPECT_DOUBLE_EQ(w.altitude_m, 66.0);
+  for (const radio::Waypoint& w : east_added) EXPECT_DOUBLE_EQ(w.speed_mps, 9.0);
+  // Shared in two runs, the western lanes to the western taker.
+  EXPECT_GE(LanesIn(west_added).size(), 2U);
+  EXPECT_GE(east_lanes.size(), 2U);
+  EXPECT_LT(LanesIn(west_added).rbegin()->first, east_lanes.begin()->first);
+}
+
+TEST(HandOverLanes, ATakerWithMuchLeftGetsFewerLanes) {
+  const std::vector<radio::Waypoint> orphaned = Lawnmower(1000.0, 6, 60.0);
+  const auto routes = HandOverLanes(orphaned,
+                                    {TakerAt(1, 900.0, Lawnmower(0.0, 6, 60.0), 60.0),
+                                     TakerAt(2, 900.0, {}, 63.0)},
+                                    kFrame);
+  ASSERT_TRUE(routes.contains(2));
+  const std::size_t busy = routes.contains(1) ? LanesIn(routes.at(1)).size() - 6 : 0;
+  const std::size_t idle = LanesIn(routes.at(2)).size();
+  EXPECT_EQ(busy + idle, 6U);
+  EXPECT_GT(idle, busy);
+}
+
+TEST(HandOverLanes, NothingToHandOverWithoutALane) {
+  // Only its way home was left.
+  const std::vector<radio::Waypoint> orphaned = {At(0, 0, false), At(0, 500, false)};
+  EXPECT_TRUE(HandOverLanes(orphaned, {TakerAt(1, 0.0, {}, 60.0)}, kFrame).empty());
+  EXPECT_TRUE(HandOverLanes(Lawnmower(0.0, 2, 60.0), {}, kFrame).empty());
+}
+
+}  // namespace
+}  // namespace fireswarm::server
