@@ -204,8 +204,9 @@ radio::CommandResult Vehicle::OnCommand(const radio::Command& command) {
       investigate_approach_ = range > radius + kLoiterCaptureM;
       if (investigate_approach_) {
         RoutePoint entry;
-        entry.position = estimator_.frame()->ToGeodetic({center.east_m + away_east / range * radius,
-                                                         center.north_m + away_north / range * radius});
+        entry.position =
+            estimator_.frame()->ToGeodetic({center.east_m + away_east / range * radius,
+                                            center.north_m + away_north / range * radius});
         entry.altitude_m = altitude;
         StartRoute({entry}, 0);
       }

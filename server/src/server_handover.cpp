@@ -45,8 +45,8 @@ std::vector<Taker> Server::TakersFor(std::uint8_t lost, double now_s) const {
 
 void Server::HandOver(std::uint8_t lost, double now_s) {
   const std::vector<radio::Waypoint> orphaned = mission_->Remaining(lost, /*from_leg_start=*/true);
-  const std::string why = "lost: not heard for " +
-                          std::to_string(static_cast<int>(config_.link.lost_after_s)) + " s";
+  const std::string why =
+      "lost: not heard for " + std::to_string(static_cast<int>(config_.link.lost_after_s)) + " s";
   mission_->MarkLost(lost, why);
   // New mission IDs above every one in use, so no vehicle takes one for another.
   std::uint16_t next_id = 0;

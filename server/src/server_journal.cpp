@@ -176,8 +176,8 @@ Server Server::Restore(const ServerConfig& config, const common::LocalFrame& fra
   }
   // Missions still uploading when the server stopped (the first, or one handed
   // over) go up again: chunks are idempotent on the vehicle.
-  if (server.mission_ && (server.state_ == MissionState::kUploading ||
-                          server.state_ == MissionState::kRunning)) {
+  if (server.mission_ &&
+      (server.state_ == MissionState::kUploading || server.state_ == MissionState::kRunning)) {
     server.mission_->Begin();
   }
   server.restoring_ = false;

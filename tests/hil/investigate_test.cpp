@@ -111,9 +111,8 @@ TEST(Investigate, AFarPointIsReachedAtCruiseSpeed) {
 
   // Cruise is 8 m/s: allow 15 % more, and the turn toward the point.
   const double allowed_s = distance_m / 8.0 * 1.15 + 10.0;
-  RunUntilOr(mission, commanded_s + allowed_s, [&] {
-    return (mission.Truth(1).position_m - point).norm() < radius_m + 10.0;
-  });
+  RunUntilOr(mission, commanded_s + allowed_s,
+             [&] { return (mission.Truth(1).position_m - point).norm() < radius_m + 10.0; });
   const double arrived_s = mission.simulation.time_s() - commanded_s;
   std::printf("investigation %.0f m away: on the circle after %.0f s (allowed %.0f s)\n",
               distance_m, arrived_s, allowed_s);

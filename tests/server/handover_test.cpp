@@ -92,10 +92,9 @@ TEST(HandOverLanes, EveryLostLaneGoesToExactlyOneTakerAfterItsOwnRoute) {
 
 TEST(HandOverLanes, ATakerWithMuchLeftGetsFewerLanes) {
   const std::vector<radio::Waypoint> orphaned = Lawnmower(1000.0, 6, 60.0);
-  const auto routes = HandOverLanes(orphaned,
-                                    {TakerAt(1, 900.0, Lawnmower(0.0, 6, 60.0), 60.0),
-                                     TakerAt(2, 900.0, {}, 63.0)},
-                                    kFrame);
+  const auto routes = HandOverLanes(
+      orphaned, {TakerAt(1, 900.0, Lawnmower(0.0, 6, 60.0), 60.0), TakerAt(2, 900.0, {}, 63.0)},
+      kFrame);
   ASSERT_TRUE(routes.contains(2));
   const std::size_t busy = routes.contains(1) ? LanesIn(routes.at(1)).size() - 6 : 0;
   const std::size_t idle = LanesIn(routes.at(2)).size();

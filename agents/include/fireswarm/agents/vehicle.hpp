@@ -132,7 +132,7 @@ class Vehicle final : public radio::VehicleRequestHandler {
   ActuatorOutputs outputs_;
   std::optional<common::LatLon> home_;
   std::uint16_t active_mission_ = 0;
-  std::size_t resume_index_ = 0;      ///< search waypoint to go back to after hold/investigate
+  std::size_t resume_index_ = 0;  ///< search waypoint to go back to after hold/investigate
   /// Where it left the search route for a hold or an investigation: the search
   /// flies back there first (rejoining_) and then on toward resume_index_.
   std::optional<common::LatLon> rejoin_at_;
