@@ -3,8 +3,10 @@
 // so the suite stays fast under ASan on two cores.
 #include "fireswarm/run/runner.hpp"
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -109,10 +111,10 @@ TEST(RunScenario, ReportJsonHasTheContractKeys) {
   const nlohmann::ordered_json j = ToJson(SmallFireRun().report);
   std::vector<std::string> keys;
   for (const auto& item : j.items()) keys.push_back(item.key());
-  EXPECT_EQ(keys, (std::vector<std::string>{"fires", "false_tracks", "coverage",
-                                            "coverage_over_time", "collisions", "min_separation_m",
-                                            "radio", "vehicles", "sim_seconds", "wall_seconds",
-                                            "real_time_factor", "expect"}));
+  EXPECT_EQ(keys, (std::vector<std::string>{"fires", "false_tracks", "tracks", "investigations",
+                                            "coverage", "coverage_over_time", "collisions",
+                                            "min_separation_m", "radio", "vehicles", "sim_seconds",
+                                            "wall_seconds", "real_time_factor", "expect"}));
   std::vector<std::string> fire_keys;
   for (const auto& item : j["fires"][0].items()) fire_keys.push_back(item.key());
   EXPECT_EQ(fire_keys,
@@ -129,6 +131,10 @@ TEST(RunScenario, ReportJsonHasTheContractKeys) {
   }
   ASSERT_EQ(j["expect"].size(), 5U);
   for (const auto& e : j["expect"]) EXPECT_EQ(e["verdict"], "pass") << e.dump();
+  // Every track the server ended with, the confirmed fire's among them.
+  ASSERT_FALSE(j["tracks"].empty());
+  EXPECT_EQ(j["tracks"][0]["status"], "confirmed");
+  EXPECT_GE(j["tracks"][0]["reports"].get<int>(), 2);
 }
 
 // A shorter run of the same scenario, twice: identical reports apart from the
@@ -221,6 +227,58 @@ TEST(RunScenario, RadioSilentVehicleNeitherHearsNorIsHeard) {
   EXPECT_GT(report.vehicles.at(1).distance_m, 100.0);
   EXPECT_EQ(report.radio.telemetry_age_p50_p99_s.count(2), 0U);
   EXPECT_EQ(report.radio.telemetry_age_p50_p99_s.count(1), 1U);
+}
+
+// The separation, lost-report and collision expectations judged on a real run:
+// two drones a minute into their mission are far closer than a kilometre, lose
+// no report (there is no fire) and collide nowhere.
+TEST(RunScenario, SeparationReportsLostAndCollisionExpectationsAreJudged) {
+  Scenario scenario = SmallArea("");
+  scenario.expect.min_separation_m = 1'000.0;
+  scenario.expect.max_reports_lost = 0;
+  scenario.expect.min_collisions = 1;
+  const Report report = RunScenario(scenario).report;
+  ASSERT_TRUE(report.min_separation_m.has_value());
+  ASSERT_EQ(report.expect.size(), 3U);
+  const ExpectOutcome& separation = report.expect[0];
+  EXPECT_EQ(separation.name, "min_separation_m");
+  EXPECT_FALSE(separation.passed);
+  EXPECT_DOUBLE_EQ(separation.value, *report.min_separation_m);
+  EXPECT_DOUBLE_EQ(separation.limit, 1'000.0);
+  EXPECT_THAT(separation.detail, ::testing::HasSubstr("at least 1000 m required"));
+  const ExpectOutcome& lost = report.expect[1];
+  EXPECT_EQ(lost.name, "max_reports_lost");
+  EXPECT_TRUE(lost.passed);
+  EXPECT_DOUBLE_EQ(lost.value, 0.0);
+  EXPECT_TRUE(lost.detail.empty());
+  const ExpectOutcome& collisions = report.expect[2];
+  EXPECT_EQ(collisions.name, "min_collisions");
+  EXPECT_FALSE(collisions.passed);
+  EXPECT_DOUBLE_EQ(collisions.value, 0.0);
+  EXPECT_DOUBLE_EQ(collisions.limit, 1.0);
+  EXPECT_EQ(collisions.detail, "0 collision(s) reported, at least 1 expected");
+  EXPECT_FALSE(report.AllExpectationsHold());
+}
+
+// Horizontal distance between the first truth positions (the stands) of two vehicles, m.
+double StandDistanceM(const Scenario& scenario, const Report& report, int a, int b) {
+  const common::EastNorth stand_a =
+      scenario.area.frame.ToLocal(report.vehicles.at(a).track.front());
+  const common::EastNorth stand_b =
+      scenario.area.frame.ToLocal(report.vehicles.at(b).track.front());
+  return std::hypot(stand_a.east_m - stand_b.east_m, stand_a.north_m - stand_b.north_m);
+}
+
+TEST(RunScenario, StandsKeepTheFleetsStandSpacing) {
+  Scenario scenario = SmallArea("");
+  scenario.duration_s = 1.0;
+  const Report by_default = RunScenario(scenario).report;
+  EXPECT_GE(StandDistanceM(scenario, by_default, 1, 2), kDefaultStandSpacingM - 1e-6);
+  scenario = SmallArea("");
+  scenario.duration_s = 1.0;
+  scenario.fleet.stand_spacing_m = 30.0;
+  const Report wide = RunScenario(scenario).report;
+  EXPECT_GE(StandDistanceM(scenario, wide, 1, 2), 30.0 - 1e-6);
 }
 
 TEST(RunScenario, LostVehicleEndsLost) {

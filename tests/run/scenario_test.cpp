@@ -102,6 +102,7 @@ fleet:
   speed_mps: 12
   endurance_s: 1200
   planner: ompl
+  stand_spacing_m: 12.5
 radio:
   baud: 115200
   turnaround_ms: 2.5
@@ -127,6 +128,8 @@ expect:
   no_collisions: true
   min_coverage: 0.9
   max_false_tracks: 1
+  min_separation_m: 2.5
+  max_reports_lost: 3
 )";
 
 TEST(ParseScenario, FullExampleReadsEveryField) {
@@ -154,6 +157,7 @@ TEST(ParseScenario, FullExampleReadsEveryField) {
   EXPECT_DOUBLE_EQ(s.fleet.speed_mps, 12.0);
   EXPECT_DOUBLE_EQ(s.fleet.endurance_s, 1200.0);
   EXPECT_EQ(s.fleet.planner, planner::PlannerKind::kOmpl);
+  EXPECT_DOUBLE_EQ(s.fleet.stand_spacing_m, 12.5);
 
   EXPECT_EQ(s.radio.baud, 115'200);
   EXPECT_DOUBLE_EQ(s.radio.turnaround_ms, 2.5);
@@ -202,6 +206,9 @@ TEST(ParseScenario, FullExampleReadsEveryField) {
   EXPECT_TRUE(s.expect.no_collisions);
   EXPECT_EQ(s.expect.min_coverage, 0.9);
   EXPECT_EQ(s.expect.max_false_tracks, 1);
+  EXPECT_EQ(s.expect.min_separation_m, 2.5);
+  EXPECT_EQ(s.expect.max_reports_lost, 3);
+  EXPECT_FALSE(s.expect.min_collisions.has_value());
 }
 
 TEST(ParseScenario, DefaultsMatchThePlannerAndTheRadio) {
@@ -226,6 +233,7 @@ TEST(ParseScenario, DefaultsMatchThePlannerAndTheRadio) {
   EXPECT_DOUBLE_EQ(s.fleet.speed_mps, planner_defaults.speed_mps);
   EXPECT_DOUBLE_EQ(s.fleet.endurance_s, planner_defaults.endurance_s);
   EXPECT_EQ(s.fleet.planner, planner::PlannerKind::kLawnmower);
+  EXPECT_DOUBLE_EQ(s.fleet.stand_spacing_m, kDefaultStandSpacingM);
 
   const radio::ChannelConfig channel;
   const radio::SchedulerConfig scheduler;
@@ -245,6 +253,18 @@ TEST(ParseScenario, DefaultsMatchThePlannerAndTheRadio) {
   EXPECT_FALSE(s.expect.no_collisions);
   EXPECT_FALSE(s.expect.min_coverage.has_value());
   EXPECT_FALSE(s.expect.max_false_tracks.has_value());
+  EXPECT_FALSE(s.expect.min_separation_m.has_value());
+  EXPECT_FALSE(s.expect.max_reports_lost.has_value());
+  EXPECT_FALSE(s.expect.min_collisions.has_value());
+}
+
+// A scenario built to collide states how many collisions it must report; it may
+// say no_collisions: false, never true.
+TEST(ParseScenario, MinCollisionsReadsWithoutNoCollisions) {
+  const Scenario s = Parse(Minimal("expect: {min_collisions: 2, no_collisions: false}\n"));
+  EXPECT_EQ(s.expect.min_collisions, 2);
+  EXPECT_FALSE(s.expect.no_collisions);
+  EXPECT_EQ(Parse(Minimal("expect: {max_reports_lost: 0}\n")).expect.max_reports_lost, 0);
 }
 
 TEST(ParseScenario, RandomFiresSeedDefaultsToTheScenarioSeed) {
@@ -421,6 +441,10 @@ INSTANTIATE_TEST_SUITE_P(
                  "fleet.planner", "got lawnmover (did you mean 'lawnmower'?)"},
         BadInput{"UnknownPlanner", kArea + "fleet: {count: 1, planner: rrt}\n", "fleet.planner",
                  "must be one of lawnmower|ompl, got rrt"},
+        BadInput{"StandSpacingBelowTheRotors", kArea + "fleet: {count: 2, stand_spacing_m: 0.5}\n",
+                 "fleet.stand_spacing_m", "must be in [1, 100], got 0.5"},
+        BadInput{"StandSpacingText", kArea + "fleet: {count: 2, stand_spacing_m: close}\n",
+                 "fleet.stand_spacing_m", "must be a finite number, got close"},
         BadInput{"UnknownChecksum", Minimal("radio: {checksum: crc32}\n"), "radio.checksum",
                  "must be one of xor|crc16, got crc32 (did you mean 'crc16'?)"},
         BadInput{"UnknownMode", Minimal("radio: {mode: tdma}\n"), "radio.mode",
@@ -519,7 +543,22 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"FalseTracksNegative", Minimal("expect: {max_false_tracks: -1}\n"),
                  "expect.max_false_tracks", "must be in [0, 1000000], got -1"},
         BadInput{"ConfirmWithinZero", Minimal("expect: {all_fires_confirmed_within_s: 0}\n"),
-                 "expect.all_fires_confirmed_within_s", "must be > 0, got 0"}),
+                 "expect.all_fires_confirmed_within_s", "must be > 0, got 0"},
+        BadInput{"SeparationZero", Minimal("expect: {min_separation_m: 0}\n"),
+                 "expect.min_separation_m", "must be > 0, got 0"},
+        BadInput{"SeparationQuoted", Minimal("expect: {min_separation_m: \"2\"}\n"),
+                 "expect.min_separation_m", "got the string \"2\""},
+        BadInput{"ReportsLostNegative", Minimal("expect: {max_reports_lost: -1}\n"),
+                 "expect.max_reports_lost", "must be in [0, 1000000], got -1"},
+        BadInput{"ReportsLostFraction", Minimal("expect: {max_reports_lost: 0.5}\n"),
+                 "expect.max_reports_lost", "must be an integer in [0, 1000000], got 0.5"},
+        BadInput{"MinCollisionsZero", Minimal("expect: {min_collisions: 0}\n"),
+                 "expect.min_collisions", "must be in [1, 1000000], got 0"},
+        BadInput{"MinCollisionsWithNoCollisions",
+                 Minimal("expect: {no_collisions: true, min_collisions: 1}\n"),
+                 "expect.min_collisions", "contradicts no_collisions: true"},
+        BadInput{"MinCollisionsTypo", Minimal("expect: {min_colisions: 1}\n"),
+                 "expect.min_colisions", "did you mean 'min_collisions'?"}),
     [](const ::testing::TestParamInfo<BadInput>& param_info) {
       return std::string(param_info.param.label);
     });
@@ -574,6 +613,41 @@ TEST(RepositoryScenarios, DemoLoadsWithFourDronesThreeFiresAndExpectations) {
   // The distractor lies in the area, where the drones will see it.
   const common::EastNorth rock = s.area.frame.ToLocal(s.distractors[0].position);
   EXPECT_TRUE(bg::covered_by(planner::Point(rock.east_m, rock.north_m), s.area.area));
+}
+
+// The scenario tests ctest runs (scenarios/CMakeLists.txt) state what they test.
+TEST(RepositoryScenarios, Swarm20FliesTwentyDronesOverALargerAreaKeepingApart) {
+  const Scenario s = LoadScenario(RepoRoot() / "scenarios" / "swarm20.yaml");
+  const Scenario demo = LoadScenario(RepoRoot() / "scenarios" / "demo.yaml");
+  EXPECT_EQ(s.fleet.count, 20);
+  EXPECT_GT(bg::area(s.area.area), 2.0 * bg::area(demo.area.area));
+  EXPECT_TRUE(s.expect.no_collisions);
+  ASSERT_TRUE(s.expect.min_separation_m.has_value());
+  EXPECT_GE(*s.expect.min_separation_m, 2.0);  // sim2d's near-miss separation
+}
+
+TEST(RepositoryScenarios, CollideCrowdsTheStandsAndExpectsACollision) {
+  const Scenario s = LoadScenario(RepoRoot() / "scenarios" / "collide.yaml");
+  EXPECT_LT(s.fleet.stand_spacing_m, kDefaultStandSpacingM);
+  EXPECT_FALSE(s.expect.no_collisions);
+  ASSERT_TRUE(s.expect.min_collisions.has_value());
+  EXPECT_GE(*s.expect.min_collisions, 1);
+}
+
+TEST(RepositoryScenarios, RadioLossLosesATenthAndNoReport) {
+  const Scenario s = LoadScenario(RepoRoot() / "scenarios" / "radio_loss.yaml");
+  EXPECT_DOUBLE_EQ(s.radio.loss, 0.1);
+  EXPECT_FALSE(s.fires.empty());
+  EXPECT_EQ(s.expect.max_reports_lost, 0);
+}
+
+TEST(RepositoryScenarios, LostDroneLosesOneMidMissionAndStillCovers) {
+  const Scenario s = LoadScenario(RepoRoot() / "scenarios" / "lost_drone.yaml");
+  ASSERT_EQ(s.faults.size(), 1U);
+  EXPECT_EQ(s.faults[0].kind, FaultKind::kTotalLoss);
+  EXPECT_GT(s.faults[0].at_s, 0.0);
+  ASSERT_TRUE(s.expect.min_coverage.has_value());
+  EXPECT_GE(*s.expect.min_coverage, 0.98);
 }
 
 TEST(RepositoryScenarios, EveryScenarioFileLoads) {

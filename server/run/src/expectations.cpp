@@ -28,6 +28,35 @@ std::string Num(double value) {
   return text;
 }
 
+// The keys on the fleet's safety and the radio: min_separation_m,
+// max_reports_lost, min_collisions.
+void EvaluateSafetyAndRadio(const Expectations& expect, const Report& report,
+                            std::vector<ExpectOutcome>& out) {
+  if (expect.min_separation_m) {
+    const double limit = *expect.min_separation_m;
+    // No separation measured (e.g. a single vehicle): nothing came close (reported as null).
+    const double value = report.min_separation_m.value_or(std::numeric_limits<double>::infinity());
+    out.push_back(Outcome(
+        "min_separation_m", value, limit, value >= limit,
+        "two vehicles came within " + Num(value) + " m, at least " + Num(limit) + " m required"));
+  }
+  if (expect.max_reports_lost) {
+    const auto limit = static_cast<double>(*expect.max_reports_lost);
+    const auto lost = static_cast<double>(report.radio.reports_lost);
+    out.push_back(Outcome("max_reports_lost", lost, limit, lost <= limit,
+                          Num(lost) + " fire report(s) of " +
+                              std::to_string(report.radio.reports_sent) +
+                              " never reached the server, at most " + Num(limit) + " allowed"));
+  }
+  if (expect.min_collisions) {
+    const auto limit = static_cast<double>(*expect.min_collisions);
+    const auto count = static_cast<double>(report.collisions.size());
+    out.push_back(
+        Outcome("min_collisions", count, limit, count >= limit,
+                Num(count) + " collision(s) reported, at least " + Num(limit) + " expected"));
+  }
+}
+
 }  // namespace
 
 std::vector<ExpectOutcome> EvaluateExpectations(const Expectations& expect, const Report& report) {
@@ -95,6 +124,7 @@ std::vector<ExpectOutcome> EvaluateExpectations(const Expectations& expect, cons
     out.push_back(Outcome("max_false_tracks", count, limit, count <= limit,
                           Num(count) + " false track(s), at most " + Num(limit) + " allowed"));
   }
+  EvaluateSafetyAndRadio(expect, report, out);
   return out;
 }
 

@@ -60,6 +60,29 @@ nlohmann::ordered_json ToJson(const Report& report) {
                             {"vehicles", track.vehicles}});
   }
   j["false_tracks"] = false_tracks;
+  Json tracks = Json::array();
+  for (const TrackOutcome& track : report.tracks) {
+    tracks.push_back({{"track_id", track.track_id},
+                      {"status", track.status},
+                      {"lat", track.position.lat_deg},
+                      {"lon", track.position.lon_deg},
+                      {"covariance_ne_m2", track.covariance_ne_m2},
+                      {"reports", track.report_count},
+                      {"vehicles", track.vehicles},
+                      {"first_seen_s", Number(track.first_seen_s)},
+                      {"last_seen_s", Number(track.last_seen_s)}});
+  }
+  j["tracks"] = tracks;
+  Json investigations = Json::array();
+  for (const InvestigationOutcome& inv : report.investigations) {
+    investigations.push_back({{"vehicle", inv.vehicle},
+                              {"track_id", inv.track_id},
+                              {"started_s", Number(inv.started_s)},
+                              {"until_s", Number(inv.until_s)},
+                              {"closest_m", Optional(inv.closest_m)},
+                              {"judged", inv.judged}});
+  }
+  j["investigations"] = investigations;
   j["coverage"] = Number(report.coverage);
   Json series = Json::array();
   for (const auto& [t_s, fraction] : report.coverage_over_time) {

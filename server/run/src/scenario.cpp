@@ -82,7 +82,7 @@ void ReadCamera(const Mapping& fleet, FleetConfig& out) {
 FleetConfig ReadFleet(const Mapping& root, const planner::SearchArea& area) {
   const Mapping fleet(root.Required("fleet"),
                       {"count", "first_id", "launch", "camera", "camera_pitch_deg", "altitude_m",
-                       "speed_mps", "endurance_s", "planner"});
+                       "speed_mps", "endurance_s", "planner", "stand_spacing_m"});
   FleetConfig out;
   ReadFleetIds(fleet, out);
   ReadLaunch(fleet, area, out);
@@ -96,6 +96,9 @@ FleetConfig ReadFleet(const Mapping& root, const planner::SearchArea& area) {
   if (const std::optional<Field> planner = fleet.Find("planner")) {
     out.planner = kPlannerKinds.at(planner->OneOf(kPlannerNames));
   }
+  out.stand_spacing_m =
+      fleet.Number("stand_spacing_m", out.stand_spacing_m,
+                   Range{internal::kMinStandSpacingM, internal::kMaxStandSpacingM});
   return out;
 }
 
@@ -146,8 +149,9 @@ Expectations ReadExpect(const Mapping& root) {
   Expectations out;
   const std::optional<Field> field = root.Find("expect");
   if (!field) return out;
-  const Mapping expect(*field, {"all_fires_confirmed_within_s", "max_fused_error_m",
-                                "no_collisions", "min_coverage", "max_false_tracks"});
+  const Mapping expect(
+      *field, {"all_fires_confirmed_within_s", "max_fused_error_m", "no_collisions", "min_coverage",
+               "max_false_tracks", "min_separation_m", "max_reports_lost", "min_collisions"});
   const Range positive{0.0, internal::kUnbounded, true};
   if (const auto f = expect.Find("all_fires_confirmed_within_s")) {
     out.all_fires_confirmed_within_s = f->Number(positive);
@@ -157,6 +161,15 @@ Expectations ReadExpect(const Mapping& root) {
   if (const auto f = expect.Find("min_coverage")) out.min_coverage = ReadMinCoverage(*f);
   if (const auto f = expect.Find("max_false_tracks")) {
     out.max_false_tracks = static_cast<int>(f->Integer(0, internal::kMaxFalseTracks));
+  }
+  if (const auto f = expect.Find("min_separation_m")) out.min_separation_m = f->Number(positive);
+  if (const auto f = expect.Find("max_reports_lost")) {
+    out.max_reports_lost = static_cast<int>(f->Integer(0, internal::kMaxReportsLost));
+  }
+  // At least one: "at least 0 collisions" would check nothing.
+  if (const auto f = expect.Find("min_collisions")) {
+    out.min_collisions = static_cast<int>(f->Integer(1, internal::kMaxCollisions));
+    if (out.no_collisions) f->Fail("contradicts no_collisions: true (both can never hold)");
   }
   return out;
 }

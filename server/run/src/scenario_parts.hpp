@@ -16,6 +16,10 @@ inline constexpr double kMaxDurationS = 86'400.0;  // one day of simulated time
 inline constexpr double kMaxAltitudeM = 1'000.0;
 inline constexpr double kMaxSpeedMps = 100.0;
 inline constexpr double kMaxEnduranceS = 86'400.0;
+/// Stands closer than this would nearly put two parked vehicles' rotor discs
+/// (sim2d: 0.25 m radius) into each other.
+inline constexpr double kMinStandSpacingM = 1.0;
+inline constexpr double kMaxStandSpacingM = 100.0;
 inline constexpr int kMaxBaud = 10'000'000;
 inline constexpr double kMaxTurnaroundMs = 1'000.0;
 inline constexpr double kMaxFireRadiusM = 1'000.0;
@@ -28,6 +32,8 @@ inline constexpr double kFullCircleDeg = 360.0;
 inline constexpr double kMaxNoiseFactor = 1'000.0;
 inline constexpr double kMaxBallastOffsetM = 1.0;
 inline constexpr int kMaxFalseTracks = 1'000'000;
+inline constexpr int kMaxReportsLost = 1'000'000;
+inline constexpr int kMaxCollisions = 1'000'000;
 
 /// For open-ended ranges: Range{0.0, kUnbounded, true} is "> 0".
 inline constexpr double kUnbounded = std::numeric_limits<double>::infinity();

@@ -222,6 +222,34 @@ void Scorer::ScoreFires(const server::Server& server, Report& report) const {
   }
 }
 
+void Scorer::ListTracks(const server::Server& server, Report& report) const {
+  const common::LocalFrame& frame = scenario_.area.frame;
+  for (const server::FireTrack& track : server.fusion().tracks()) {
+    TrackOutcome out;
+    out.track_id = track.track_id;
+    out.status = std::string(server::ToString(track.status));
+    // Tracks are (north, east).
+    out.position = frame.ToGeodetic({track.position_ne_m.y(), track.position_ne_m.x()});
+    const Eigen::Matrix2d& p = track.covariance_ne_m2;
+    out.covariance_ne_m2 = {p(0, 0), p(0, 1), p(1, 1)};
+    out.report_count = track.report_count;
+    out.vehicles = ToInts(track.vehicle_ids);
+    out.first_seen_s = track.first_seen_s;
+    out.last_seen_s = track.last_seen_s;
+    report.tracks.push_back(out);
+  }
+  for (const server::Investigation& investigation : server.investigations()) {
+    InvestigationOutcome out;
+    out.vehicle = investigation.vehicle;
+    out.track_id = investigation.track_id;
+    out.started_s = investigation.started_s;
+    out.until_s = investigation.until_s;
+    if (std::isfinite(investigation.closest_m)) out.closest_m = investigation.closest_m;
+    out.judged = investigation.judged;
+    report.investigations.push_back(out);
+  }
+}
+
 void Scorer::ScoreRadio(const server::Server& server, const FinalState& final_state,
                         Report& report) const {
   RadioOutcome& radio = report.radio;
@@ -261,6 +289,7 @@ Report Scorer::Finish(const sim2d::World& world, const server::Server& server,
   report.scenario = scenario_.name;
   report.seed = scenario_.seed;
   ScoreFires(server, report);
+  ListTracks(server, report);
   report.coverage = coverage_.Fraction();
   report.coverage_over_time = coverage_over_time_;
   if (report.coverage_over_time.empty() ||

@@ -99,6 +99,7 @@ class Scorer {
   void ObserveSeparation(const sim2d::World& world);
   void ObserveCollisions(const sim2d::World& world);
   void ScoreFires(const server::Server& server, Report& report) const;
+  void ListTracks(const server::Server& server, Report& report) const;
   void ScoreRadio(const server::Server& server, const FinalState& final_state,
                   Report& report) const;
 

@@ -16,11 +16,6 @@ namespace bg = boost::geometry;
 /// the edge spread and cameras look a little past it.
 constexpr double kFireGridMarginM = 200.0;
 constexpr double kFireCellM = 5.0;
-/// Stands on the ring are at least this far apart (centre to centre), m: each
-/// vehicle holds its GPS position while it climbs, and two GPS biases (2.5 m CEP
-/// each, agents::GeolocationSigmas) differ by ~3 m per axis (1 sigma), so a few
-/// metres would let two climbing vehicles meet.
-constexpr double kMinStandSpacingM = 10.0;
 constexpr double kMinStandRingM = 8.0;
 constexpr int kMaxDrawsPerFire = 100'000;
 /// Forward flight draws about this much more than hovering (measured: a 1.2 kg
@@ -165,9 +160,11 @@ std::map<int, sim2d::Vec2> StandPositions(const Scenario& scenario,
     return stands;
   }
   // Ring radius: with evenly spaced stands, neighbours (chord 2 r sin(pi / n))
-  // are at least the spacing apart.
+  // are at least the spacing apart (fleet.stand_spacing_m, kDefaultStandSpacingM
+  // says why 10 m by default).
+  const double spacing_m = scenario.fleet.stand_spacing_m;
   const double ring_m =
-      std::max(kMinStandRingM, kMinStandSpacingM / (2.0 * std::sin(std::numbers::pi / n)));
+      std::max(kMinStandRingM, spacing_m / (2.0 * std::sin(std::numbers::pi / n)));
   // Each drone stands on the ring in the direction of its first waypoint, so that
   // climb-outs run radially outward and never cross; stands closer than the
   // spacing are pushed apart along the ring (evenly spaced when they do not fit).
@@ -184,7 +181,7 @@ std::map<int, sim2d::Vec2> StandPositions(const Scenario& scenario,
   }
   std::sort(bearings.begin(), bearings.end());
   const double full = 2.0 * std::numbers::pi;
-  const double gap = 2.0 * std::asin(std::min(1.0, kMinStandSpacingM / (2.0 * ring_m)));
+  const double gap = 2.0 * std::asin(std::min(1.0, spacing_m / (2.0 * ring_m)));
   std::vector<double> angles;
   for (const auto& [bearing, id] : bearings) {
     angles.push_back(angles.empty() ? bearing : std::max(bearing, angles.back() + gap));

@@ -19,9 +19,9 @@ namespace fireswarm::run::internal {
 std::vector<FireSpec> ExpandFires(const Scenario& scenario);
 
 /// Where each vehicle stands at launch, local ENU metres (the area's frame): on a
-/// ring around the launch site, a few metres apart, each in the direction of its
-/// first waypoint so that climb-outs run radially outward and never cross. Keyed
-/// by receiver ID.
+/// ring around the launch site, at least fleet.stand_spacing_m apart (10 m by
+/// default), each in the direction of its first waypoint so that climb-outs run
+/// radially outward and never cross. Keyed by receiver ID.
 std::map<int, sim2d::Vec2> StandPositions(const Scenario& scenario,
                                           const std::vector<server::DroneMission>& missions);
 

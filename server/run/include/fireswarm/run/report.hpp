@@ -40,6 +40,31 @@ struct FalseTrack {
   std::vector<int> vehicles;
 };
 
+/// Every track the server's fusion ended with, whatever its status: what the
+/// operator saw, including tentative and rejected ones.
+struct TrackOutcome {
+  std::int32_t track_id = 0;
+  std::string status;  ///< "tentative", "confirmed" or "rejected"
+  common::LatLon position;
+  /// Fused covariance, (north, east) m^2: [nn, ne, ee].
+  std::array<double, 3> covariance_ne_m2{};
+  int report_count = 0;
+  std::vector<int> vehicles;  ///< receiver IDs that reported it, ascending
+  double first_seen_s = 0.0;
+  double last_seen_s = 0.0;
+};
+
+/// An investigation the server ordered (a vehicle sent to circle a point).
+struct InvestigationOutcome {
+  int vehicle = 0;
+  std::int32_t track_id = 0;  ///< 0: an operator's point
+  double started_s = 0.0;
+  double until_s = 0.0;
+  /// Closest the vehicle's telemetry came to the point; absent when it never reported.
+  std::optional<double> closest_m;
+  bool judged = false;
+};
+
 struct Collision {
   double t_s = 0.0;
   int vehicle_a = 0;
@@ -82,6 +107,8 @@ struct Report {
   std::uint64_t seed = 0;
   std::vector<FireOutcome> fires;
   std::vector<FalseTrack> false_tracks;
+  std::vector<TrackOutcome> tracks;
+  std::vector<InvestigationOutcome> investigations;
   double coverage = 0.0;  ///< fraction 0..1 of the search area seen by a camera
   std::vector<std::pair<double, double>> coverage_over_time;  ///< (t_s, fraction)
   std::vector<Collision> collisions;

@@ -68,6 +68,11 @@ inline constexpr double kDefaultFireRadiusM = 10.0;
 inline constexpr double kDefaultDistractorRadiusM = 5.0;  ///< sim2d::Distractor's
 inline constexpr double kDefaultDistractorTempC = 55.0;   ///< sim2d::Distractor's
 inline constexpr std::string_view kDefaultCamera = "seed";
+/// Stands at the launch site are at least this far apart (centre to centre), m:
+/// each vehicle holds its GPS position while it climbs, and two GPS biases
+/// (2.5 m CEP each, agents::GeolocationSigmas) differ by ~3 m per axis (1 sigma),
+/// so a few metres would let two climbing vehicles meet.
+inline constexpr double kDefaultStandSpacingM = 10.0;
 
 struct FleetConfig {
   int count = 0;     ///< drones, 1..254 (required)
@@ -82,6 +87,8 @@ struct FleetConfig {
   double speed_mps = 10.0;                      ///< cruise
   double endurance_s = 1'800.0;                 ///< flight time per sortie
   planner::PlannerKind planner = planner::PlannerKind::kLawnmower;
+  /// Smallest distance between two vehicles' stands around the launch site, m.
+  double stand_spacing_m = kDefaultStandSpacingM;
 
   /// first_id, first_id + 1, ..., first_id + count - 1.
   std::vector<int> ReceiverIds() const;
@@ -144,6 +151,15 @@ struct Expectations {
   bool no_collisions = false;          ///< true: any collision fails the run
   std::optional<double> min_coverage;  ///< fraction 0..1 of the search area seen
   std::optional<int> max_false_tracks;
+  /// The report's min_separation_m (3D, between two vehicles while one of them
+  /// flies) is at least this, m; holds when none was measured (e.g. a single vehicle).
+  std::optional<double> min_separation_m;
+  /// Fire reports the vehicles queued that never reached the server (the
+  /// report's radio.reports_lost) number at most this.
+  std::optional<int> max_reports_lost;
+  /// Collisions number at least this: for scenarios built to collide, which
+  /// check that the collision is seen and reported.
+  std::optional<int> min_collisions;
 };
 
 /// A whole scenario, checked and defaulted (see docs/scenario.md).
