@@ -21,9 +21,10 @@ run() {
 # crash stops the job.
 status=0
 run run scenarios/demo.yaml --report "$out/demo_report.json" --svg "$out/demo_map.svg" \
-  --junit "$out/demo_junit.xml" || status=$?
+  --junit "$out/demo_junit.xml" --log "$out/demo.lcmlog" || status=$?
 if [ "$status" -ne 0 ] && [ "$status" -ne 1 ]; then exit "$status"; fi
-echo "(report: $out/demo_report.json, map: $out/demo_map.svg, JUnit: $out/demo_junit.xml)"
+echo "(report: $out/demo_report.json, map: $out/demo_map.svg, JUnit: $out/demo_junit.xml,"
+echo " LCM log: $out/demo.lcmlog, replay with: lcm-logplayer $out/demo.lcmlog)"
 if [ "$status" -eq 1 ]; then
   echo "(some of the demo's expectations did not hold: see the report's \"expect\" list)"
 fi
