@@ -19,7 +19,6 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
-#include <iterator>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -97,9 +96,9 @@ void CheckFlags(const Flags& f, const po::variables_map& values) {
 }
 
 // --log and --lcm: the server published through server::LcmBridge on simulated
-// time. The bridge writes the log to a scratch sibling; Finish() hands it to
-// common::WriteFileAtomically, so a run that fails or is cut short leaves no log,
-// and a reader never sees half of one.
+// time. The bridge writes the log to a scratch sibling; Finish() renames it into
+// place, so a run that fails or is cut short leaves no log, and a reader never
+// sees half of one.
 class RunLcmOutput {
  public:
   /// Creates the scratch log and opens the LCM URL. Throws UsageError naming
@@ -138,18 +137,18 @@ class RunLcmOutput {
     bridge_->Publish(server, t_s, utime, kUtimeAtSimZero);
   }
 
-  /// Closes the scratch log and writes it into place. Throws std::runtime_error
-  /// naming the log.
+  /// Closes the scratch log and renames it into place (same directory: atomic).
+  /// Throws std::runtime_error naming the log.
   void Finish() {
     published_ = bridge_->published();
     bridge_.reset();  // closes the scratch log
     if (log_path_.empty()) return;
-    std::ifstream in(scratch_, std::ios::binary);
-    const std::string events((std::istreambuf_iterator<char>(in)),
-                             std::istreambuf_iterator<char>());
-    if (!in) throw std::runtime_error(log_path_.string() + ": cannot read " + scratch_.string());
-    common::WriteFileAtomically(log_path_, events);
-    RemoveScratch();
+    std::error_code error;
+    fs::rename(scratch_, log_path_, error);
+    if (error) {
+      throw std::runtime_error(log_path_.string() + ": cannot move " + scratch_.string() +
+                               " into place: " + error.message());
+    }
   }
 
   /// What Finish() ended with: the messages published (and logged), where.

@@ -128,7 +128,7 @@ void MissionManager::MarkLost(std::uint8_t vehicle, std::string why) {
 
 std::vector<radio::Waypoint> MissionManager::Remaining(std::uint8_t vehicle,
                                                        bool from_leg_start) const {
-  const Drone& drone = drones_.at(vehicle);
+  const Drone& drone = Find(vehicle);
   const std::vector<radio::Waypoint>& route = drone.mission.waypoints;
   std::size_t first = drone.progress.waypoint_index;
   if (from_leg_start && first > 0) --first;
@@ -137,19 +137,19 @@ std::vector<radio::Waypoint> MissionManager::Remaining(std::uint8_t vehicle,
 }
 
 const DroneMission& MissionManager::mission_of(std::uint8_t vehicle) const {
-  const auto found = drones_.find(vehicle);
-  if (found == drones_.end()) {
-    throw std::out_of_range("vehicle " + std::to_string(vehicle) + " has no mission");
-  }
-  return found->second.mission;
+  return Find(vehicle).mission;
 }
 
-MissionManager::Drone& MissionManager::Find(std::uint8_t vehicle) {
+const MissionManager::Drone& MissionManager::Find(std::uint8_t vehicle) const {
   const auto found = drones_.find(vehicle);
   if (found == drones_.end()) {
     throw std::out_of_range("vehicle " + std::to_string(vehicle) + " has no mission");
   }
   return found->second;
+}
+
+MissionManager::Drone& MissionManager::Find(std::uint8_t vehicle) {
+  return const_cast<Drone&>(std::as_const(*this).Find(vehicle));
 }
 
 void MissionManager::Begin() {
@@ -269,11 +269,7 @@ void MissionManager::RestorePhase(std::uint8_t vehicle, DronePhase phase) {
 }
 
 const DroneProgress& MissionManager::progress(std::uint8_t vehicle) const {
-  const auto found = drones_.find(vehicle);
-  if (found == drones_.end()) {
-    throw std::out_of_range("vehicle " + std::to_string(vehicle) + " has no mission");
-  }
-  return found->second.progress;
+  return Find(vehicle).progress;
 }
 
 std::vector<std::uint8_t> MissionManager::vehicles() const {

@@ -102,8 +102,7 @@ void Server::LoadMission(std::vector<DroneMission> missions, double now_s) {
                       {"mission_id", m.mission_id},
                       {"waypoints", WaypointsJson(m.waypoints)}});
   }
-  mission_.emplace(*scheduler_, missions, config_.mission);
-  missions_ = std::move(missions);
+  mission_.emplace(*scheduler_, std::move(missions), config_.mission);
   Record(now_s, "mission", {{"drones", std::move(drones)}});
 }
 

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <cstdio>
 #include <limits>
 #include <vector>
@@ -19,27 +20,38 @@ using testing::OneVehicleWorld;
 using testing::RunUntilOr;
 using testing::WaypointAt;
 
+// Starts the mission's vehicle (1) on one lane due north from the origin, `length_m` long, at 60 m.
+void StartLaneNorth(Mission& mission, double length_m) {
+  mission.RunUntil(1.0);
+  mission.link.UploadAndStart(1, 2,
+                              {WaypointAt(mission, Vec2(0.0, 0.0), 60.0, /*lane_start=*/true),
+                               WaypointAt(mission, Vec2(0.0, length_m), 60.0)});
+}
+
+// Orders vehicle 1 to circle `point` (local m) for `duration_s`; radius and
+// altitude 0: its own loiter radius and altitude.
+void SendInvestigate(Mission& mission, const Vec2& point, std::uint16_t duration_s) {
+  const common::LatLon target = mission.ToLatLon(point);
+  radio::Command investigate;
+  investigate.type = radio::CommandType::kInvestigate;
+  investigate.lat_deg = target.lat_deg;
+  investigate.lon_deg = target.lon_deg;
+  investigate.duration_s = duration_s;
+  mission.link.server().SendCommand(1, investigate);
+}
+
 TEST(Investigate, LoiterKeepsTheFireInView) {
   const Vec2 fire(150.0, 300.0);
   sim2d::SimulationConfig config = OneVehicleWorld();
   config.ignitions.push_back({fire, 0.0});
   Mission mission(config);
   agents::Vehicle& vehicle = mission.AddVehicle(agents::VehicleConfig{});
-  mission.RunUntil(1.0);
   // A lane 150 m west of the fire: the fire stays out of the camera's view.
-  mission.link.UploadAndStart(1, 2,
-                              {WaypointAt(mission, Vec2(0.0, 0.0), 60.0, /*lane_start=*/true),
-                               WaypointAt(mission, Vec2(0.0, 1500.0), 60.0)});
+  StartLaneNorth(mission, 1500.0);
   RunUntilOr(mission, 60.0, [&] { return vehicle.mode() == FlightMode::kSearch; });
   ASSERT_EQ(vehicle.mode(), FlightMode::kSearch);
 
-  const common::LatLon fire_position = mission.ToLatLon(fire);
-  radio::Command investigate;
-  investigate.type = radio::CommandType::kInvestigate;
-  investigate.lat_deg = fire_position.lat_deg;
-  investigate.lon_deg = fire_position.lon_deg;
-  investigate.duration_s = 150;  // radius and altitude 0: the default radius, here
-  mission.link.server().SendCommand(1, investigate);
+  SendInvestigate(mission, fire, 150);
   const double commanded_s = mission.simulation.time_s();
   mission.RunUntil(commanded_s + 1.0);
   ASSERT_EQ(vehicle.mode(), FlightMode::kInvestigate);
@@ -88,21 +100,12 @@ TEST(Investigate, AFarPointIsReachedAtCruiseSpeed) {
   config.world.wind.from_deg = 90.0;
   Mission mission(config);
   agents::Vehicle& vehicle = mission.AddVehicle(agents::VehicleConfig{});
-  mission.RunUntil(1.0);
-  mission.link.UploadAndStart(1, 2,
-                              {WaypointAt(mission, Vec2(0.0, 0.0), 60.0, /*lane_start=*/true),
-                               WaypointAt(mission, Vec2(0.0, 1500.0), 60.0)});
+  StartLaneNorth(mission, 1500.0);
   RunUntilOr(mission, 60.0, [&] { return vehicle.mode() == FlightMode::kSearch; });
   ASSERT_EQ(vehicle.mode(), FlightMode::kSearch);
 
   const Vec2 point(700.0, -400.0);
-  const common::LatLon target = mission.ToLatLon(point);
-  radio::Command investigate;
-  investigate.type = radio::CommandType::kInvestigate;
-  investigate.lat_deg = target.lat_deg;
-  investigate.lon_deg = target.lon_deg;
-  investigate.duration_s = 400;
-  mission.link.server().SendCommand(1, investigate);
+  SendInvestigate(mission, point, 400);
   const double commanded_s = mission.simulation.time_s();
   mission.RunUntil(commanded_s + 1.0);
   ASSERT_EQ(vehicle.mode(), FlightMode::kInvestigate);
@@ -134,22 +137,13 @@ TEST(Investigate, TheSearchResumesWhereItLeftTheLane) {
   sim2d::SimulationConfig config = OneVehicleWorld();
   Mission mission(config);
   agents::Vehicle& vehicle = mission.AddVehicle(agents::VehicleConfig{});
-  mission.RunUntil(1.0);
-  mission.link.UploadAndStart(1, 2,
-                              {WaypointAt(mission, Vec2(0.0, 0.0), 60.0, /*lane_start=*/true),
-                               WaypointAt(mission, Vec2(0.0, 1200.0), 60.0)});
+  StartLaneNorth(mission, 1200.0);
   RunUntilOr(mission, 200.0, [&] { return mission.Truth(1).position_m.y() > 300.0; });
   ASSERT_EQ(vehicle.mode(), FlightMode::kSearch);
   const Vec2 left_at = mission.Truth(1).position_m;
 
   // 300 m east of the lane, 60 s around it (its transit included).
-  const common::LatLon target = mission.ToLatLon(Vec2(300.0, left_at.y()));
-  radio::Command investigate;
-  investigate.type = radio::CommandType::kInvestigate;
-  investigate.lat_deg = target.lat_deg;
-  investigate.lon_deg = target.lon_deg;
-  investigate.duration_s = 60;
-  mission.link.server().SendCommand(1, investigate);
+  SendInvestigate(mission, Vec2(300.0, left_at.y()), 60);
   RunUntilOr(mission, mission.simulation.time_s() + 10.0,
              [&] { return vehicle.mode() == FlightMode::kInvestigate; });
   ASSERT_EQ(vehicle.mode(), FlightMode::kInvestigate);

@@ -132,6 +132,8 @@ class MissionManager {
     radio::Nanos retry_start_at = radio::Nanos::max();
   };
   static Drone DroneFor(DroneMission mission);
+  // The drone of `vehicle`; throws std::out_of_range naming it when it has no mission.
+  const Drone& Find(std::uint8_t vehicle) const;
   Drone& Find(std::uint8_t vehicle);
   void SendChunk(Drone& drone, std::size_t index);
   void SendStart(Drone& drone);

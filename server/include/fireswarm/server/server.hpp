@@ -189,7 +189,6 @@ class Server {
   std::unique_ptr<radio::MasterScheduler> scheduler_;
   VehicleRegistry registry_;
   FireFusion fusion_;
-  std::vector<DroneMission> missions_;
   std::optional<MissionManager> mission_;
   MissionState state_ = MissionState::kIdle;
   double mission_started_s_ = 0.0;
