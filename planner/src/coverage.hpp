@@ -5,8 +5,8 @@
 #include <vector>
 
 #include "fireswarm/planner/geometry.hpp"
+#include "fireswarm/planner/transit.hpp"
 #include "partition.hpp"
-#include "transit.hpp"
 
 namespace fireswarm::planner {
 

@@ -15,10 +15,10 @@
 #include "coverage.hpp"
 #include "coverage_raster.hpp"
 #include "fireswarm/planner/footprint.hpp"
+#include "fireswarm/planner/transit.hpp"
 #include "lanes.hpp"
 #include "partition.hpp"
 #include "sorties.hpp"
-#include "transit.hpp"
 
 namespace fireswarm::planner {
 namespace bg = boost::geometry;

@@ -5,15 +5,15 @@
 #include <vector>
 
 #include "fireswarm/planner/geometry.hpp"
+#include "fireswarm/planner/transit.hpp"
 #include "partition.hpp"
-#include "transit.hpp"
 
 namespace fireswarm::planner {
 
 /// One point of a flight, local frame.
 struct FlightPoint {
   Point point;
-  bool is_return = false;  ///< a return to launch between two sorties
+  bool is_return = false;    ///< a return to launch between two sorties
   bool starts_lane = false;  ///< the leg that begins here flies a search lane
 };
 

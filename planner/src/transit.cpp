@@ -5,7 +5,7 @@
 // edge of the tree, of the solution and of the shortened path is proven clear.
 // States additionally keep kClearanceM from the zones (except the query's own
 // endpoints, which may lie on a zone's boundary, e.g. a lane ending at it).
-#include "transit.hpp"
+#include "fireswarm/planner/transit.hpp"
 
 #include <ompl/base/MotionValidator.h>
 #include <ompl/base/PlannerTerminationCondition.h>
@@ -205,6 +205,22 @@ bool TransitPlanner::IsInside(Point p) const {
 
 bool TransitPlanner::IsClear(Point from, Point to) const {
   return InteriorLengthM(Path{from, to}, impl_->no_fly) == 0.0;
+}
+
+bool TransitPlanner::IsCircleClear(Point center, double radius_m) const {
+  for (const Polygon& zone : impl_->no_fly) {
+    // 0 when `center` is inside the zone; the farthest point is a vertex of its outer ring.
+    const auto nearest_m = static_cast<double>(bg::distance(center, zone));
+    double farthest_m = 0.0;
+    for (const Point& vertex : zone.outer()) {
+      farthest_m = std::max(farthest_m, static_cast<double>(bg::distance(center, vertex)));
+    }
+    if (nearest_m + kOnBoundaryToleranceM < radius_m &&
+        radius_m < farthest_m - kOnBoundaryToleranceM) {
+      return false;
+    }
+  }
+  return true;
 }
 
 double TransitPlanner::DistanceM(Point from, Point to) const {

@@ -85,12 +85,15 @@ void CheckFlags(const Flags& f, const po::variables_map& values) {
   }
 }
 
-server::ServerConfig ServerConfigFor(const Flags& f) {
+// `area`: the search area as planned, its no-fly zones (--no-fly and the area
+// file's) kept out of by the legs the server makes up.
+server::ServerConfig ServerConfigFor(const Flags& f, const planner::SearchArea& area) {
   server::ServerConfig config;
   config.radio.mode = ModeOf(f.link);
   config.radio.checksum = ChecksumOf(f.link);
   config.radio.timing.baud = static_cast<int>(f.link.baud);
   config.telemetry_hz = f.telemetry_hz;
+  config.no_fly = area.no_fly;
   return config;
 }
 
@@ -223,7 +226,7 @@ int RunServe(const std::vector<std::string>& args) {
   CheckFlags(f, values);
   const planner::SearchArea area = planner::LoadSearchArea(
       f.area, f.no_fly.empty() ? std::nullopt : std::optional<fs::path>(f.no_fly));
-  const server::ServerConfig config = ServerConfigFor(f);
+  const server::ServerConfig config = ServerConfigFor(f, area);
 
   // The journal first: a resumed mission needs no plan.
   std::vector<server::JournalEntry> entries;

@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <limits>
+#include <stdexcept>
 #include <utility>
+
+#include "local_point.hpp"
 
 namespace fireswarm::server {
 namespace {
@@ -22,8 +25,7 @@ struct Load {
 };
 
 Eigen::Vector2d NorthEastOf(const common::LocalFrame& frame, const radio::Waypoint& waypoint) {
-  const common::EastNorth p = frame.ToLocal({waypoint.lat_deg, waypoint.lon_deg});
-  return {p.north_m, p.east_m};
+  return NorthEast(frame, {waypoint.lat_deg, waypoint.lon_deg});
 }
 
 std::vector<Lane> LanesOf(const std::vector<radio::Waypoint>& route,
@@ -84,13 +86,32 @@ radio::Waypoint WaypointAt(const common::LocalFrame& frame, const Eigen::Vector2
   return waypoint;
 }
 
+// The corners a join from `from` to `to` turns at to keep out of the no-fly
+// zones: none when the straight leg is clear. A join that cannot be routed (an
+// end inside a zone: a drone that drifted in) stays straight and is counted.
+std::vector<Eigen::Vector2d> JoinCorners(const planner::TransitPlanner* around,
+                                         const Eigen::Vector2d& from, const Eigen::Vector2d& to,
+                                         int& straight_joins) {
+  if (around == nullptr || around->IsClear(PlannerPoint(from), PlannerPoint(to))) return {};
+  try {
+    const planner::Path path = around->Plan(PlannerPoint(from), PlannerPoint(to));
+    std::vector<Eigen::Vector2d> corners;
+    for (std::size_t i = 1; i + 1 < path.size(); ++i) corners.push_back(NorthEast(path[i]));
+    return corners;
+  } catch (const std::runtime_error&) {
+    ++straight_joins;
+    return {};
+  }
+}
+
 }  // namespace
 
-std::map<std::uint8_t, std::vector<radio::Waypoint>> HandOverLanes(
-    const std::vector<radio::Waypoint>& orphaned, const std::vector<Taker>& takers,
-    const common::LocalFrame& frame) {
+LaneHandOver HandOverLanes(const std::vector<radio::Waypoint>& orphaned,
+                           const std::vector<Taker>& takers, const common::LocalFrame& frame,
+                           const planner::TransitPlanner* around) {
+  LaneHandOver result;
   const std::vector<Lane> lanes = LanesOf(orphaned, frame);
-  if (lanes.empty() || takers.empty()) return {};
+  if (lanes.empty() || takers.empty()) return result;
   std::vector<Load> loads;
   double total_m = 0.0;
   for (const Taker& taker : takers) {
@@ -116,20 +137,25 @@ std::map<std::uint8_t, std::vector<radio::Waypoint>> HandOverLanes(
     Eigen::Vector2d start = lane.start_ne_m;
     Eigen::Vector2d end = lane.end_ne_m;
     if ((end - load.end_ne_m).norm() < (start - load.end_ne_m).norm()) std::swap(start, end);
+    for (const Eigen::Vector2d& corner :
+         JoinCorners(around, load.end_ne_m, start, result.straight_joins)) {
+      load.added.push_back(WaypointAt(frame, corner, takers[taker], /*lane_start=*/false));
+      load.work_m += (corner - load.end_ne_m).norm();
+      load.end_ne_m = corner;
+    }
     load.added.push_back(WaypointAt(frame, start, takers[taker], /*lane_start=*/true));
     load.added.push_back(WaypointAt(frame, end, takers[taker], /*lane_start=*/false));
     load.work_m += (start - load.end_ne_m).norm() + (end - start).norm();
     load.end_ne_m = end;
   }
 
-  std::map<std::uint8_t, std::vector<radio::Waypoint>> routes;
   for (std::size_t i = 0; i < takers.size(); ++i) {
     if (loads[i].added.empty()) continue;
     std::vector<radio::Waypoint> route = takers[i].remaining;
     route.insert(route.end(), loads[i].added.begin(), loads[i].added.end());
-    routes[takers[i].vehicle] = std::move(route);
+    result.routes[takers[i].vehicle] = std::move(route);
   }
-  return routes;
+  return result;
 }
 
 }  // namespace fireswarm::server

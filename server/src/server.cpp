@@ -6,11 +6,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <stdexcept>
 #include <utility>
 #include <variant>
 
+#include "local_point.hpp"
 #include "server_journal_json.hpp"
 
 namespace fireswarm::server {
@@ -22,11 +22,6 @@ constexpr double kMillisPerSecond = 1e3;
 
 double Seconds(radio::Nanos t) {
   return radio::ToSeconds(t);
-}
-
-Eigen::Vector2d NorthEast(const common::LocalFrame& frame, common::LatLon point) {
-  const common::EastNorth local = frame.ToLocal(point);
-  return {local.north_m, local.east_m};
 }
 
 }  // namespace
@@ -79,6 +74,7 @@ Server::Server(const ServerConfig& config, const common::LocalFrame& frame)
       registry_(config.link),
       fusion_(config.fusion) {
   config_.Validate();
+  transit_ = TransitFor(config_);
 }
 
 void Server::AddVehicle(int receiver_id, double now_s) {
@@ -140,17 +136,24 @@ bool Server::Handle(const OperatorCommand& command, radio::Nanos now, std::strin
     case Kind::kInvestigatePoint:
     case Kind::kRetaskVehicle: {
       if (!common::IsValidLatLon(command.point)) return refuse("the point is not a valid lat/lon");
+      if (command.vehicle != 0 && !registry_.Contains(command.vehicle)) {
+        return refuse("vehicle " + std::to_string(command.vehicle) + " is not registered");
+      }
+      if (command.vehicle == 0 && command.kind == Kind::kRetaskVehicle) {
+        return refuse("re-task needs a vehicle");
+      }
+      const Eigen::Vector2d point_ne_m = NorthEast(frame_, command.point);
+      const double radius_m = InvestigateRadiusM(command.radius_m);
+      if (std::optional<std::string> no = CircleRefusal(point_ne_m, radius_m)) return refuse(*no);
       std::optional<std::uint8_t> vehicle;
       if (command.vehicle != 0) {
-        if (!registry_.Contains(command.vehicle)) {
-          return refuse("vehicle " + std::to_string(command.vehicle) + " is not registered");
-        }
+        std::optional<std::string> no = ApproachRefusal(command.vehicle, point_ne_m, radius_m);
+        if (no) return refuse(*no);
         vehicle = command.vehicle;
-      } else if (command.kind == Kind::kRetaskVehicle) {
-        return refuse("re-task needs a vehicle");
       } else {
-        vehicle = BestPlacedFor(NorthEast(frame_, command.point), 0, now_s);
-        if (!vehicle) return refuse("no searching vehicle with a working link");
+        std::string why_none;
+        vehicle = BestPlacedFor(point_ne_m, radius_m, 0, now_s, &why_none);
+        if (!vehicle) return refuse(why_none);
       }
       Record(now_s, "investigate_order", record);
       Investigate(*vehicle, command.point, command.radius_m, 0, now_s);
@@ -195,35 +198,6 @@ void Server::Investigate(std::uint8_t vehicle, common::LatLon point, double radi
           {"track_id", track_id},
           {"until_s", investigation.until_s},
           {"point_ne_m", {point_ne_m.x(), point_ne_m.y()}}});
-}
-
-std::optional<std::uint8_t> Server::BestPlacedFor(const Eigen::Vector2d& point_ne_m,
-                                                  std::uint8_t reporter, double now_s) const {
-  std::optional<std::uint8_t> best;
-  double best_m = std::numeric_limits<double>::infinity();
-  bool best_is_reporter = true;
-  for (const std::uint8_t id : registry_.ids()) {
-    const VehicleState& vehicle = registry_.state(id);
-    if (!vehicle.telemetry || registry_.LinkAt(id, now_s) != LinkState::kOk) continue;
-    if (vehicle.telemetry->mode != radio::FlightMode::kSearch) continue;
-    if ((vehicle.telemetry->flags & radio::telemetry_flags::kLowBattery) != 0) continue;
-    const bool busy = std::ranges::any_of(investigations_, [&](const Investigation& i) {
-      return i.vehicle == id && i.until_s > now_s;
-    });
-    if (busy) continue;
-    const double distance_m =
-        (NorthEast(frame_, {vehicle.telemetry->lat_deg, vehicle.telemetry->lon_deg}) - point_ne_m)
-            .norm();
-    const bool is_reporter = id == reporter;
-    // Another vehicle than the reporter wins: its view is independent.
-    if ((best_is_reporter && !is_reporter) ||
-        (best_is_reporter == is_reporter && distance_m < best_m)) {
-      best = id;
-      best_m = distance_m;
-      best_is_reporter = is_reporter;
-    }
-  }
-  return best;
 }
 
 std::vector<radio::Burst> Server::Step(radio::Nanos now, std::span<const std::uint8_t> received) {
@@ -320,9 +294,19 @@ void Server::AfterFusion(const FireObservation& observation, const FireReportRes
   if (state_ != MissionState::kRunning && state_ != MissionState::kUploading) return;
   const FireTrack* track = fusion_.Find(result.track_id);
   if (track == nullptr) return;
-  const std::optional<std::uint8_t> vehicle =
-      BestPlacedFor(track->position_ne_m, observation.vehicle_id, now_s);
-  if (!vehicle) return;
+  const double radius_m = InvestigateRadiusM(0.0);
+  std::string why_none;
+  std::optional<std::uint8_t> vehicle;
+  if (std::optional<std::string> no = CircleRefusal(track->position_ne_m, radius_m)) {
+    why_none = std::move(*no);
+  } else {
+    vehicle =
+        BestPlacedFor(track->position_ne_m, radius_m, observation.vehicle_id, now_s, &why_none);
+  }
+  if (!vehicle) {
+    Record(now_s, "no_investigation", {{"track_id", result.track_id}, {"why", why_none}});
+    return;
+  }
   const common::LatLon point =
       frame_.ToGeodetic({track->position_ne_m.y(), track->position_ne_m.x()});
   Investigate(*vehicle, point, 0.0, result.track_id, now_s);

@@ -1,7 +1,8 @@
 // The server's side of a lost drone: when a flying drone has not been heard for
 // the registry's lost time, it is given up and the lanes it had still to fly go
 // to the drones still searching (handover.hpp says how they are shared out), each
-// as a new mission uploaded and started like the first.
+// as a new mission uploaded and started like the first, its joins to the new
+// lanes routed around the no-fly zones.
 #include <string>
 
 #include "fireswarm/server/handover.hpp"
@@ -53,8 +54,9 @@ void Server::HandOver(std::uint8_t lost, double now_s) {
   for (const std::uint8_t id : mission_->vehicles()) {
     next_id = std::max(next_id, mission_->mission_of(id).mission_id);
   }
+  LaneHandOver handed = HandOverLanes(orphaned, TakersFor(lost, now_s), frame_, transit_.get());
   nlohmann::json drones = nlohmann::json::array();
-  for (auto& [vehicle, route] : HandOverLanes(orphaned, TakersFor(lost, now_s), frame_)) {
+  for (auto& [vehicle, route] : handed.routes) {
     DroneMission mission;
     mission.vehicle = vehicle;
     mission.mission_id = ++next_id;
@@ -64,7 +66,10 @@ void Server::HandOver(std::uint8_t lost, double now_s) {
                       {"waypoints", WaypointsJson(mission.waypoints)}});
     mission_->Replace(std::move(mission));
   }
-  Record(now_s, "handover", {{"lost", lost}, {"why", why}, {"drones", std::move(drones)}});
+  nlohmann::json record = {{"lost", lost}, {"why", why}, {"drones", std::move(drones)}};
+  // Only when it happened, so a journal without zones reads as before.
+  if (handed.straight_joins > 0) record["straight_joins"] = handed.straight_joins;
+  Record(now_s, "handover", std::move(record));
 }
 
 }  // namespace fireswarm::server

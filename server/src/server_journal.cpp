@@ -166,6 +166,8 @@ Server Server::Restore(const ServerConfig& config, const common::LocalFrame& fra
         server.investigations_.push_back(InvestigationFrom(entry));
       } else if (entry.kind == "investigate_order") {
         // The order itself is carried out by its "investigation" entry.
+      } else if (entry.kind == "no_investigation") {
+        // Why a new track got no investigator: for the operator, nothing to rebuild.
       } else {
         throw std::runtime_error("unknown kind");
       }

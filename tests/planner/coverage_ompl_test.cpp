@@ -5,8 +5,8 @@
 #include <boost/geometry.hpp>  // buffer and its strategies
 
 #include "coverage.hpp"
+#include "fireswarm/planner/transit.hpp"
 #include "planner_test_helpers.hpp"
-#include "transit.hpp"
 namespace fireswarm::planner {
 namespace {
 

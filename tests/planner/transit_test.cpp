@@ -1,4 +1,4 @@
-#include "transit.hpp"
+#include "fireswarm/planner/transit.hpp"
 
 #include <gtest/gtest.h>
 
@@ -62,6 +62,21 @@ TEST(TransitPlanner, EndpointOnTheBoundaryIsAllowed) {
 TEST(TransitPlanner, RefusesAnEndpointInsideAZone) {
   const TransitPlanner planner(Block(), Bounds(), 1);
   EXPECT_THROW(planner.Plan({0, 0}, {500, 0}), std::runtime_error);
+}
+
+TEST(TransitPlanner, ACircleIsClearOnlyWhenItStaysOutOfEveryZone) {
+  // Block: x 400..600, y -300..300.
+  const TransitPlanner planner(Block(), Bounds(), 1);
+  EXPECT_TRUE(planner.IsCircleClear({300, 0}, 50.0));    // 50 m short of the west edge
+  EXPECT_FALSE(planner.IsCircleClear({300, 0}, 150.0));  // reaches 50 m in
+  EXPECT_TRUE(planner.IsCircleClear({300, 0}, 100.0));   // touches the edge
+  EXPECT_FALSE(planner.IsCircleClear({500, 0}, 20.0));   // centre in the zone
+  // Around the whole block, never inside: farther than its farthest corner.
+  EXPECT_TRUE(planner.IsCircleClear({500, 0}, 400.0));
+  // Near a corner the nearest point is the corner, not an edge's line.
+  EXPECT_TRUE(planner.IsCircleClear({380, 320}, 28.0));  // corner 28.3 m away
+  EXPECT_FALSE(planner.IsCircleClear({380, 320}, 29.0));
+  EXPECT_TRUE(TransitPlanner(MultiPolygon{}, Bounds(), 1).IsCircleClear({500, 0}, 20.0));
 }
 
 // Regression: RRTConnect returned the first path it found, around the far end of

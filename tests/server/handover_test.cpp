@@ -2,10 +2,13 @@
 
 #include <gtest/gtest.h>
 
+#include <boost/geometry/algorithms/correct.hpp>
 #include <cmath>
 #include <set>
 #include <utility>
 #include <vector>
+
+#include "fireswarm/planner/transit.hpp"
 
 namespace fireswarm::server {
 namespace {
@@ -65,8 +68,10 @@ TEST(HandOverLanes, EveryLostLaneGoesToExactlyOneTakerAfterItsOwnRoute) {
   const std::vector<radio::Waypoint> orphaned = Lawnmower(1000.0, 6, 63.0);
   const std::vector<radio::Waypoint> west_own = Lawnmower(0.0, 2, 60.0);
   const std::vector<radio::Waypoint> east_own = Lawnmower(2000.0, 2, 66.0);
-  const auto routes = HandOverLanes(
-      orphaned, {TakerAt(1, 0.0, west_own, 60.0), TakerAt(2, 2000.0, east_own, 66.0)}, kFrame);
+  const auto routes =
+      HandOverLanes(orphaned, {TakerAt(1, 0.0, west_own, 60.0), TakerAt(2, 2000.0, east_own, 66.0)},
+                    kFrame)
+          .routes;
   ASSERT_EQ(routes.size(), 2U);
   const std::vector<radio::Waypoint>& west = routes.at(1);
   const std::vector<radio::Waypoint>& east = routes.at(2);
@@ -92,9 +97,11 @@ TEST(HandOverLanes, EveryLostLaneGoesToExactlyOneTakerAfterItsOwnRoute) {
 
 TEST(HandOverLanes, ATakerWithMuchLeftGetsFewerLanes) {
   const std::vector<radio::Waypoint> orphaned = Lawnmower(1000.0, 6, 60.0);
-  const auto routes = HandOverLanes(
-      orphaned, {TakerAt(1, 900.0, Lawnmower(0.0, 6, 60.0), 60.0), TakerAt(2, 900.0, {}, 63.0)},
-      kFrame);
+  const auto routes =
+      HandOverLanes(orphaned,
+                    {TakerAt(1, 900.0, Lawnmower(0.0, 6, 60.0), 60.0), TakerAt(2, 900.0, {}, 63.0)},
+                    kFrame)
+          .routes;
   ASSERT_TRUE(routes.contains(2));
   const std::size_t busy = routes.contains(1) ? LanesIn(routes.at(1)).size() - 6 : 0;
   const std::size_t idle = LanesIn(routes.at(2)).size();
@@ -105,8 +112,66 @@ TEST(HandOverLanes, ATakerWithMuchLeftGetsFewerLanes) {
 TEST(HandOverLanes, NothingToHandOverWithoutALane) {
   // Only its way home was left.
   const std::vector<radio::Waypoint> orphaned = {At(0, 0, false), At(0, 500, false)};
-  EXPECT_TRUE(HandOverLanes(orphaned, {TakerAt(1, 0.0, {}, 60.0)}, kFrame).empty());
-  EXPECT_TRUE(HandOverLanes(Lawnmower(0.0, 2, 60.0), {}, kFrame).empty());
+  EXPECT_TRUE(HandOverLanes(orphaned, {TakerAt(1, 0.0, {}, 60.0)}, kFrame).routes.empty());
+  EXPECT_TRUE(HandOverLanes(Lawnmower(0.0, 2, 60.0), {}, kFrame).routes.empty());
+}
+
+// The taker's path as flown: from where it is through every waypoint, in the
+// planner's (east, north) metres.
+planner::Path FlownPath(const Taker& taker, const std::vector<radio::Waypoint>& route) {
+  planner::Path path{{taker.position_ne_m.y(), taker.position_ne_m.x()}};
+  for (const radio::Waypoint& w : route) {
+    const common::EastNorth p = kFrame.ToLocal({w.lat_deg, w.lon_deg});
+    path.emplace_back(p.east_m, p.north_m);
+  }
+  return path;
+}
+
+planner::Polygon Rect(double east0, double north0, double east1, double north1) {
+  planner::Polygon p{{{east0, north0}, {east0, north1}, {east1, north1}, {east1, north0}}};
+  boost::geometry::correct(p);
+  return p;
+}
+
+TEST(HandOverLanes, JoinsGoAroundTheNoFlyZones) {
+  // Two lost lanes north-south at 1000 and 1300 m east. One zone lies across the
+  // straight way from the taker (200 m north, west of it) to the first lane, one
+  // across the join at the lanes' north ends.
+  const std::vector<radio::Waypoint> orphaned = {At(1000, 0, true), At(1000, 1000, false),
+                                                 At(1300, 1000, true), At(1300, 0, false)};
+  const planner::MultiPolygon zones{Rect(400, -300, 600, 800), Rect(1100, 900, 1200, 1100)};
+  const planner::TransitPlanner around(zones, planner::Box{{-1000, -1000}, {2500, 2500}}, 1);
+  const Taker taker = TakerAt(1, 0.0, {}, 60.0);
+  Taker north_of_origin = taker;
+  north_of_origin.position_ne_m = Eigen::Vector2d(200.0, 0.0);
+
+  // Straight, both joins would cross a zone.
+  const LaneHandOver straight = HandOverLanes(orphaned, {north_of_origin}, kFrame);
+  ASSERT_TRUE(straight.routes.contains(1));
+  EXPECT_GT(planner::InteriorLengthM(FlownPath(north_of_origin, straight.routes.at(1)), zones),
+            100.0);
+
+  const LaneHandOver routed = HandOverLanes(orphaned, {north_of_origin}, kFrame, &around);
+  ASSERT_TRUE(routed.routes.contains(1));
+  const std::vector<radio::Waypoint>& route = routed.routes.at(1);
+  EXPECT_EQ(planner::InteriorLengthM(FlownPath(north_of_origin, route), zones), 0.0);
+  EXPECT_EQ(routed.straight_joins, 0);
+  // The same lanes, with the transit's corners between them as plain waypoints.
+  EXPECT_EQ(LanesIn(route), LanesIn(orphaned));
+  EXPECT_GT(route.size(), orphaned.size());
+  for (const radio::Waypoint& w : route) EXPECT_DOUBLE_EQ(w.altitude_m, 60.0);
+}
+
+TEST(HandOverLanes, AJoinThatCannotBeRoutedStaysStraightAndIsCounted) {
+  // The taker has drifted 50 m into a zone: no transit can start there.
+  const std::vector<radio::Waypoint> orphaned = {At(1000, 0, true), At(1000, 1000, false)};
+  const planner::MultiPolygon zones{Rect(-100, -100, 100, 100)};
+  const planner::TransitPlanner around(zones, planner::Box{{-1000, -1000}, {2500, 2500}}, 1);
+  const LaneHandOver handed =
+      HandOverLanes(orphaned, {TakerAt(1, 50.0, {}, 60.0)}, kFrame, &around);
+  EXPECT_EQ(handed.straight_joins, 1);
+  ASSERT_TRUE(handed.routes.contains(1));
+  EXPECT_EQ(handed.routes.at(1).size(), 2U);
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <boost/geometry/algorithms/correct.hpp>
 #include <cmath>
 #include <set>
 #include <string>
@@ -84,7 +85,7 @@ const radio::Command* LastOf(const FakeVehicle& vehicle, radio::CommandType type
 // Three vehicles flying a started mission: 1 at the origin, 2 at 300 m east, 3 at
 // 2 km east.
 struct Fleet {
-  Fleet() : air(0.0), server(ServerConfig{}, kFrame) {
+  explicit Fleet(const ServerConfig& config = {}) : air(0.0), server(config, kFrame) {
     for (std::uint8_t id = 1; id <= 3; ++id) {
       air.Add(id);
       server.AddVehicle(id);
@@ -136,6 +137,84 @@ TEST(Server, SendsTheNearestOtherVehicleToANewFireAndResumesItOnConfirmation) {
   fleet.RunFor(5 * kSecond);
   EXPECT_EQ(fleet.server.fusion().tracks()[0].status, FireTrackStatus::kConfirmed);
   EXPECT_NE(LastOf(fleet.air.vehicle(2), radio::CommandType::kResume), nullptr);
+}
+
+// A no-fly zone: the rectangle [east0, east1] x [north0, north1] m of the frame.
+planner::MultiPolygon Zone(double east0, double north0, double east1, double north1) {
+  planner::Polygon zone{{{east0, north0}, {east0, north1}, {east1, north1}, {east1, north0}}};
+  boost::geometry::correct(zone);
+  return {zone};
+}
+
+ServerConfig WithNoFly(planner::MultiPolygon zones) {
+  ServerConfig config;
+  config.no_fly = std::move(zones);
+  return config;
+}
+
+bool Journaled(const std::vector<JournalEntry>& journal, const std::string& kind,
+               const std::string& why_part) {
+  return std::ranges::any_of(journal, [&](const JournalEntry& e) {
+    return e.kind == kind && e.data.value("why", std::string()).find(why_part) != std::string::npos;
+  });
+}
+
+TEST(Server, SendsNoInvestigatorWhoseStraightApproachCrossesANoFlyZone) {
+  // A zone 50 m wide between the fire (150 m east) and vehicle 2 (300 m east),
+  // the nearest other vehicle; vehicle 3 is 1.5 km north of the fire, its way clear.
+  Fleet fleet(WithNoFly(Zone(200, -100, 250, 100)));
+  fleet.air.vehicle(3).endpoint().SetTelemetry(Searching(150, 1'500, 2'000));
+  fleet.RunFor(3 * kSecond);
+  fleet.air.vehicle(1).endpoint().QueueFireReport(ReportAt(150, 0, 0, 4'000));
+  fleet.RunFor(5 * kSecond);
+  ASSERT_EQ(fleet.server.fusion().tracks().size(), 1u);
+  EXPECT_EQ(LastOf(fleet.air.vehicle(2), radio::CommandType::kInvestigate), nullptr)
+      << "vehicle 2 was sent through the zone";
+  EXPECT_NE(LastOf(fleet.air.vehicle(3), radio::CommandType::kInvestigate), nullptr);
+  EXPECT_EQ(LastOf(fleet.air.vehicle(1), radio::CommandType::kInvestigate), nullptr);
+}
+
+TEST(Server, SendsNobodyToCircleIntoANoFlyZoneAndJournalsWhy) {
+  // The fire is 10 m from a zone: the vehicles' 20 m circle around it would enter it.
+  Fleet fleet(WithNoFly(Zone(160, -100, 200, 100)));
+  fleet.air.vehicle(1).endpoint().QueueFireReport(ReportAt(150, 0, 0, 2'000));
+  fleet.RunFor(5 * kSecond);
+  ASSERT_EQ(fleet.server.fusion().tracks().size(), 1u);
+  for (std::uint8_t id = 1; id <= 3; ++id) {
+    EXPECT_EQ(LastOf(fleet.air.vehicle(id), radio::CommandType::kInvestigate), nullptr)
+        << "vehicle " << int{id} << " was sent";
+  }
+  EXPECT_TRUE(fleet.server.investigations().empty());
+  EXPECT_TRUE(Journaled(fleet.server.TakeJournalEntries(), "no_investigation",
+                        "the 20 m circle around the point enters a no-fly zone"));
+}
+
+TEST(Server, RefusesAnOperatorInvestigationIntoANoFlyZoneWithTheReason) {
+  // Vehicles at 0, 300 and 2,000 m east; the zone between 1 and the others.
+  Fleet fleet(WithNoFly(Zone(100, -100, 200, 100)));
+  fleet.RunFor(3 * kSecond);  // every vehicle's position in
+  const auto order = [&](OperatorCommand::Kind kind, std::uint8_t vehicle, double east_m,
+                         double north_m, std::string* why) {
+    const OperatorCommand command{kind, vehicle, kFrame.ToGeodetic({east_m, north_m}), 0.0, ""};
+    return fleet.server.Handle(command, fleet.air.channel.now(), why);
+  };
+  using Kind = OperatorCommand::Kind;
+  std::string why;
+  EXPECT_FALSE(order(Kind::kInvestigatePoint, 0, 150, 0, &why));
+  EXPECT_EQ(why, "the point is inside a no-fly zone");
+  EXPECT_FALSE(order(Kind::kInvestigatePoint, 0, 90, 0, &why));
+  EXPECT_EQ(why, "the 20 m circle around the point enters a no-fly zone");
+  EXPECT_FALSE(order(Kind::kRetaskVehicle, 2, 50, 0, &why));
+  EXPECT_EQ(why, "vehicle 2's straight approach to the circle crosses a no-fly zone");
+  // West of the zone only vehicle 1 can go.
+  EXPECT_TRUE(order(Kind::kInvestigatePoint, 0, 50, 0, &why)) << why;
+  ASSERT_EQ(fleet.server.investigations().size(), 1u);
+  EXPECT_EQ(fleet.server.investigations().back().vehicle, 1);
+  // With 1 busy, nobody has a clear way there.
+  EXPECT_FALSE(order(Kind::kInvestigatePoint, 0, 40, 50, &why));
+  EXPECT_EQ(why,
+            "no searching vehicle has a straight approach clear of the no-fly zones (2 would "
+            "cross one)");
 }
 
 TEST(Server, RejectsATrackTheInvestigatorDidNotSeeAgain) {
@@ -244,9 +323,9 @@ std::vector<DroneMission> LaneMissions(const std::vector<std::uint8_t>& ids, int
   return missions;
 }
 
-TEST(Server, ALostDronesLanesGoToTheOthersAsNewMissions) {
-  Air air(0.0);
-  Server server(ServerConfig{}, kFrame);
+// Vehicles 1..3 searching at 0, 400 and 800 m east fly LaneMissions({1, 2, 3}, 2),
+// started and running.
+void StartLaneMission(Air& air, Server& server) {
   for (std::uint8_t id = 1; id <= 3; ++id) {
     air.Add(id);
     server.AddVehicle(id);
@@ -255,6 +334,12 @@ TEST(Server, ALostDronesLanesGoToTheOthersAsNewMissions) {
   server.LoadMission(LaneMissions({1, 2, 3}, 2));
   ASSERT_TRUE(server.Handle({OperatorCommand::Kind::kStart, 0, {}, 0.0, "test"}, Nanos{0}));
   air.Run(server, 60 * kSecond, [&] { return server.state() == MissionState::kRunning; });
+}
+
+TEST(Server, ALostDronesLanesGoToTheOthersAsNewMissions) {
+  Air air(0.0);
+  Server server(ServerConfig{}, kFrame);
+  StartLaneMission(air, server);
   ASSERT_EQ(server.state(), MissionState::kRunning);
 
   // Vehicle 2 is gone: after the registry's lost time its two lanes are flown by 1 and 3.
@@ -310,6 +395,34 @@ TEST(Server, ALostDronesLanesGoToTheOthersAsNewMissions) {
               server.mission()->mission_of(id).waypoints);
     EXPECT_EQ(restored.mission()->progress(id).phase, DronePhase::kFlying);
   }
+}
+
+TEST(Server, AHandedOverLaneIsJoinedAroundANoFlyZone) {
+  // As above, with a zone across vehicle 1's straight way from the end of its own
+  // lanes (200 m east, 1 km north) to the nearer end of 2's first lane (400 m east).
+  const planner::MultiPolygon zones = Zone(250, 900, 350, 1'100);
+  Air air(0.0);
+  Server server(WithNoFly(zones), kFrame);
+  StartLaneMission(air, server);
+  ASSERT_EQ(server.state(), MissionState::kRunning);
+  air.silent.insert(2);
+  air.Run(server, air.channel.now() + 30 * kSecond, [&] {
+    return server.mission()->mission_of(1).mission_id != 1 &&
+           server.mission()->mission_of(3).mission_id != 1;
+  });
+  for (const std::uint8_t id : {std::uint8_t{1}, std::uint8_t{3}}) {
+    const DroneMission& mission = server.mission()->mission_of(id);
+    ASSERT_NE(mission.mission_id, 1) << "vehicle " << int{id} << " got no lane";
+    // From where it is, through its new mission.
+    planner::Path flown{{400.0 * (id - 1), 0.0}};
+    for (const radio::Waypoint& w : mission.waypoints) {
+      const common::EastNorth p = kFrame.ToLocal({w.lat_deg, w.lon_deg});
+      flown.emplace_back(p.east_m, p.north_m);
+    }
+    EXPECT_EQ(planner::InteriorLengthM(flown, zones), 0.0) << "vehicle " << int{id};
+  }
+  // Vehicle 1's join turns at the zone's corners: more than its 2 lanes and one of 2's.
+  EXPECT_GT(server.mission()->mission_of(1).waypoints.size(), 6U);
 }
 
 TEST(Server, RestoreNamesTheBadEntry) {

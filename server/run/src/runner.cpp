@@ -59,6 +59,9 @@ server::ServerConfig MakeServerConfig(const Scenario& scenario) {
   config.radio.timing.baud = scenario.radio.baud;
   config.radio.timing.turnaround = std::chrono::duration_cast<Nanos>(
       std::chrono::duration<double, std::milli>(scenario.radio.turnaround_ms));
+  // The zones the plan kept out of, in the same local frame as the server's.
+  config.no_fly = scenario.area.no_fly;
+  config.no_fly_seed = static_cast<unsigned>(scenario.seed);
   return config;
 }
 

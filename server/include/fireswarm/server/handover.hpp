@@ -10,6 +10,10 @@
 // the share take none while another can). Each taker's new route is its own remaining
 // waypoints, then its lanes, flown at its own altitude and speed (altitude layers
 // keep drones apart). Lanes are flown in the direction nearer to the taker.
+// With no-fly zones, every join the hand-over makes (from the taker's route or
+// position to a lane, from a lane to the next) goes around them: the transit's
+// corners are inserted as plain waypoints. Takers and directions are still chosen
+// by straight distances; the work counted is the routed one.
 #pragma once
 
 #include <Eigen/Core>
@@ -18,6 +22,7 @@
 #include <vector>
 
 #include "fireswarm/common/local_frame.hpp"
+#include "fireswarm/planner/transit.hpp"
 #include "fireswarm/radio/messages.hpp"
 
 namespace fireswarm::server {
@@ -35,11 +40,21 @@ struct Taker {
   double speed_mps = 0.0;
 };
 
+/// What a hand-over gives out.
+struct LaneHandOver {
+  /// Each taker's new route, for the takers that got at least one lane.
+  std::map<std::uint8_t, std::vector<radio::Waypoint>> routes;
+  /// Joins that could not be routed around the no-fly zones (an end inside a zone,
+  /// or no way around found) and are flown straight. 0 when they all were.
+  int straight_joins = 0;
+};
+
 /// The lost drone's `orphaned` waypoints (from the one it was flying away from)
-/// shared out among `takers` (not empty). Returns each taker's new route, for the
-/// takers that got at least one lane. Returns nothing when `orphaned` has no lane.
-std::map<std::uint8_t, std::vector<radio::Waypoint>> HandOverLanes(
-    const std::vector<radio::Waypoint>& orphaned, const std::vector<Taker>& takers,
-    const common::LocalFrame& frame);
+/// shared out among `takers` (not empty). `around`: the no-fly zones' transit
+/// planner (in `frame`'s local metres), or null for straight joins. Routes nothing
+/// when `orphaned` has no lane.
+LaneHandOver HandOverLanes(const std::vector<radio::Waypoint>& orphaned,
+                           const std::vector<Taker>& takers, const common::LocalFrame& frame,
+                           const planner::TransitPlanner* around = nullptr);
 
 }  // namespace fireswarm::server

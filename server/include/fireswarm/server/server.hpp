@@ -15,6 +15,12 @@
 //
 // A lost drone: when a flying drone has not been heard for the registry's lost
 // time, its remaining lanes go to the drones still searching (server_handover.cpp).
+//
+// No-fly zones (ServerConfig::no_fly): the legs the server makes up keep out of
+// them as the planner's do. A taker's joins to the lanes it is handed go around
+// them (planner::TransitPlanner), and a vehicle is sent to investigate only when
+// its straight approach to the circle and the circle itself enter none; when no
+// vehicle can go, none is sent and the reason is journaled (server_airspace.cpp).
 #pragma once
 
 #include <cstdint>
@@ -28,6 +34,8 @@
 #include <vector>
 
 #include "fireswarm/common/local_frame.hpp"
+#include "fireswarm/planner/geometry.hpp"
+#include "fireswarm/planner/transit.hpp"
 #include "fireswarm/radio/master_scheduler.hpp"
 #include "fireswarm/server/fire_fusion.hpp"
 #include "fireswarm/server/handover.hpp"
@@ -59,6 +67,13 @@ struct ServerConfig {
   /// A tentative track is rejected this long after its investigation ended when
   /// the investigator did not report it again, s (reports still in the air).
   double reject_grace_s = 10.0;
+  /// No-fly zones in the server's local frame (x metres east, y north of its
+  /// origin, as planner::SearchArea::no_fly): the joins of handed-over lanes go
+  /// around them and no investigation's approach or circle may enter them. Empty:
+  /// none.
+  planner::MultiPolygon no_fly;
+  /// Seed of the transit planning around `no_fly` (same seed, same routes).
+  unsigned no_fly_seed = 1;
   /// Throws std::invalid_argument naming the field.
   void Validate() const;
 };
@@ -173,8 +188,16 @@ class Server {
                    double now_s);
   void Investigate(std::uint8_t vehicle, common::LatLon point, double radius_m,
                    std::int32_t track_id, double now_s);
-  std::optional<std::uint8_t> BestPlacedFor(const Eigen::Vector2d& point_ne_m,
-                                            std::uint8_t reporter, double now_s) const;
+  static std::unique_ptr<const planner::TransitPlanner> TransitFor(const ServerConfig& config);
+  double InvestigateRadiusM(double ordered_radius_m) const;
+  std::optional<std::string> CircleRefusal(const Eigen::Vector2d& point_ne_m,
+                                           double radius_m) const;
+  std::optional<std::string> ApproachRefusal(std::uint8_t vehicle,
+                                             const Eigen::Vector2d& point_ne_m,
+                                             double radius_m) const;
+  std::optional<std::uint8_t> BestPlacedFor(const Eigen::Vector2d& point_ne_m, double radius_m,
+                                            std::uint8_t reporter, double now_s,
+                                            std::string* why_none) const;
   void SendToAll(radio::CommandType type);
   void HandOverLostDrones(double now_s);
   void HandOver(std::uint8_t lost, double now_s);
@@ -186,6 +209,7 @@ class Server {
 
   ServerConfig config_;
   common::LocalFrame frame_;
+  std::unique_ptr<const planner::TransitPlanner> transit_;  // null without no-fly zones
   std::unique_ptr<radio::MasterScheduler> scheduler_;
   VehicleRegistry registry_;
   FireFusion fusion_;

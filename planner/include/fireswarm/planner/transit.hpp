@@ -1,5 +1,7 @@
 // Transit between two points around no-fly zones (launch -> region, cell -> cell,
-// region -> home), planned with OMPL. OMPL stays inside planner/src.
+// region -> home, and the server's own legs: a lost drone's lanes joined to a
+// taker's route, an investigation's approach and circle), planned with OMPL. The
+// class hides OMPL (pimpl): OMPL stays inside planner/src.
 #pragma once
 
 #include <memory>
@@ -46,6 +48,13 @@ class TransitPlanner {
   /// True when the straight segment enters no no-fly zone's interior
   /// (InteriorLengthM == 0); touching a boundary is allowed.
   bool IsClear(Point from, Point to) const;
+
+  /// True when the circle of `radius_m` (> 0) around `center` enters no no-fly
+  /// zone's interior; touching a boundary is allowed. Exact, not sampled: over a
+  /// zone (connected) the distance from `center` takes every value between the
+  /// nearest and the farthest, so the circle enters it exactly when the radius
+  /// lies strictly between the two.
+  bool IsCircleClear(Point center, double radius_m) const;
 
   /// The zones this planner keeps out of.
   const MultiPolygon& NoFly() const;
