@@ -38,6 +38,7 @@ void FireDetectorConfig::Validate() const {
   RequireNonNegative("sigmas.heading_rad", sigmas.heading_rad);
   RequireNonNegative("sigmas.pixel_px", sigmas.pixel_px);
   if (persist_frames < 1) Reject("persist_frames", persist_frames, "must be >= 1");
+  RequirePositive("max_pass_wait_s", max_pass_wait_s);
   RequireNonNegative("report_interval_s", report_interval_s);
   RequirePositive("gate_min_m", gate_min_m);
   RequireNonNegative("gate_sigmas", gate_sigmas);
@@ -97,9 +98,10 @@ std::vector<FireDetection> FireDetector::Process(double time_s, const CameraFram
     Fold(candidate, fix);
   }
 
+  // Candidates seen in this frame, and those whose pass ended with the last one.
   std::vector<FireDetection> detections;
-  for (const std::size_t index : hit_this_frame_) {
-    Candidate& candidate = candidates_[index];
+  for (Candidate& candidate : candidates_) {
+    if (candidate.last_frame != frame_ && !PassEnded(candidate)) continue;
     if (!DueForReport(candidate, time_s)) continue;
     detections.push_back(Report(candidate, time_s, pose));
     candidate.reported = true;
@@ -142,6 +144,7 @@ void FireDetector::Fold(Candidate& candidate, const Fix& fix) {
   candidate.streak = continues ? candidate.streak + 1 : 1;
   if (!continues) {
     candidate.reported_this_streak = false;
+    candidate.streak_start_s = *last_time_s_;
     candidate.peak_temperature_c = fix.region->peak_temperature_c;
   } else {
     candidate.peak_temperature_c =
@@ -177,7 +180,11 @@ bool FireDetector::DueForReport(const Candidate& candidate, double time_s) const
       candidate.streak < kClippedPersistFactor * config_.persist_frames) {
     return false;
   }
-  return !candidate.reported || time_s - candidate.last_report_s >= config_.report_interval_s;
+  if (candidate.reported && time_s - candidate.last_report_s < config_.report_interval_s) {
+    return false;
+  }
+  return PassEnded(candidate) ||
+         candidate.last_seen_s - candidate.streak_start_s >= config_.max_pass_wait_s;
 }
 
 FireDetection FireDetector::Report(const Candidate& candidate, double time_s,

@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <string>
 
+#include "fireswarm/common/local_frame.hpp"
 #include "fireswarm/run/report_json.hpp"
 #include "fireswarm/run/scenario.hpp"
 
@@ -72,6 +73,13 @@ TEST(RunScenario, SmallFireIsConfirmedAccurately) {
   ASSERT_TRUE(fire.confirmed_s.has_value()) << ToJson(report).dump(2);
   ASSERT_TRUE(fire.error_m.has_value());
   EXPECT_LT(*fire.error_m, 10.0);
+  // The truth is where the fire burns: the centre of its 5 m cell (it has not
+  // spread by then), not the scenario's point, which lies in that cell.
+  const common::LocalFrame frame(fire.ignition);
+  const common::EastNorth truth = frame.ToLocal(fire.truth);
+  EXPECT_GT(std::hypot(truth.east_m, truth.north_m), 0.01);
+  EXPECT_LE(std::hypot(truth.east_m, truth.north_m), 2.5 * std::sqrt(2.0) + 1e-6);
+  ASSERT_TRUE(fire.ignition_error_m.has_value());
   ASSERT_TRUE(fire.first_report_s.has_value());
   EXPECT_LE(*fire.first_report_s, *fire.confirmed_s);
   EXPECT_FALSE(fire.vehicles.empty());
@@ -119,7 +127,8 @@ TEST(RunScenario, ReportJsonHasTheContractKeys) {
   for (const auto& item : j["fires"][0].items()) fire_keys.push_back(item.key());
   EXPECT_EQ(fire_keys,
             (std::vector<std::string>{"true_lat", "true_lon", "fused_lat", "fused_lon", "error_m",
-                                      "first_report_s", "confirmed_s", "vehicles"}));
+                                      "first_report_s", "confirmed_s", "vehicles", "ignition_lat",
+                                      "ignition_lon", "ignition_error_m"}));
   for (const char* key :
        {"busy_fraction", "telemetry_age_s", "retries", "report_latency_s", "reports_lost"}) {
     EXPECT_TRUE(j["radio"].contains(key)) << key;

@@ -26,6 +26,9 @@ Json FireJson(const FireOutcome& fire) {
   j["first_report_s"] = Optional(fire.first_report_s);
   j["confirmed_s"] = Optional(fire.confirmed_s);
   j["vehicles"] = fire.vehicles;
+  j["ignition_lat"] = fire.ignition.lat_deg;
+  j["ignition_lon"] = fire.ignition.lon_deg;
+  j["ignition_error_m"] = Optional(fire.ignition_error_m);
   return j;
 }
 

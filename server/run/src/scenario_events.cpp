@@ -34,13 +34,15 @@ FireSpec ReadFire(const Field& field, const Scenario& scenario) {
 }
 
 RandomFiresSpec ReadRandomFires(const Field& field, std::uint64_t scenario_seed) {
-  const Mapping random(field, {"count", "seed", "radius_m"});
+  const Mapping random(field, {"count", "seed", "radius_m", "min_spacing_m"});
   RandomFiresSpec out;
   out.count = static_cast<int>(random.Required("count").Integer(1, internal::kMaxRandomFires));
   const std::optional<Field> seed = random.Find("seed");
   out.seed = seed ? seed->Unsigned64() : scenario_seed;
   out.radius_m =
       random.Number("radius_m", out.radius_m, Range{0.0, internal::kMaxFireRadiusM, true});
+  out.min_spacing_m =
+      random.Number("min_spacing_m", out.min_spacing_m, Range{0.0, internal::kMaxFireSpacingM});
   return out;
 }
 

@@ -23,6 +23,7 @@ inline constexpr double kMaxStandSpacingM = 100.0;
 inline constexpr int kMaxBaud = 10'000'000;
 inline constexpr double kMaxTurnaroundMs = 1'000.0;
 inline constexpr double kMaxFireRadiusM = 1'000.0;
+inline constexpr double kMaxFireSpacingM = 10'000.0;
 inline constexpr int kMaxRandomFires = 1'000;
 inline constexpr double kMaxDistractorRadiusM = 1'000.0;
 inline constexpr double kMinDistractorTempC = -50.0;

@@ -47,6 +47,44 @@ bool OnFire(const sim2d::FireGrid& grid, const sim2d::Vec2& position_m, double t
 
 }  // namespace
 
+std::optional<sim2d::Vec2> FireHotCentre(const sim2d::FireGrid& grid,
+                                         const sim2d::Vec2& ignition_m) {
+  const std::optional<sim2d::CellIndex> start = grid.CellAt(ignition_m);
+  if (!start || !grid.IgnitionTimeS(*start)) return std::nullopt;
+  const double ambient_c = grid.config().ambient_c;
+  std::vector<bool> seen(static_cast<std::size_t>(grid.cols()) *
+                         static_cast<std::size_t>(grid.rows()));
+  const auto flat = [&](sim2d::CellIndex cell) {
+    return static_cast<std::size_t>(cell.row) * static_cast<std::size_t>(grid.cols()) +
+           static_cast<std::size_t>(cell.col);
+  };
+  std::vector<sim2d::CellIndex> open{*start};
+  seen[flat(*start)] = true;
+  sim2d::Vec2 sum = sim2d::Vec2::Zero();
+  int hot = 0;
+  while (!open.empty()) {
+    const sim2d::CellIndex cell = open.back();
+    open.pop_back();
+    if (grid.CellTemperatureC(cell) - ambient_c >= kVisibleExcessK) {
+      sum += grid.CellCenter(cell);
+      ++hot;
+    }
+    for (int dr = -1; dr <= 1; ++dr) {
+      for (int dc = -1; dc <= 1; ++dc) {
+        const sim2d::CellIndex next{cell.col + dc, cell.row + dr};
+        if (next.col < 0 || next.row < 0 || next.col >= grid.cols() || next.row >= grid.rows() ||
+            seen[flat(next)] || !grid.IgnitionTimeS(next)) {
+          continue;
+        }
+        seen[flat(next)] = true;
+        open.push_back(next);
+      }
+    }
+  }
+  if (hot == 0) return std::nullopt;
+  return sum / static_cast<double>(hot);
+}
+
 double Percentile(std::vector<double> values, double p) {
   std::sort(values.begin(), values.end());
   const double rank = std::ceil(p * static_cast<double>(values.size()));
@@ -126,13 +164,29 @@ void Scorer::Observe(double t_s, const sim2d::Simulation& simulation,
   ObserveSeparation(world);
   ObserveCollisions(world);
   for (const server::FireTrack& track : server.fusion().tracks()) {
-    if (track.status != server::FireTrackStatus::kConfirmed ||
-        confirmed_.contains(track.track_id)) {
-      continue;
+    if (track.status != server::FireTrackStatus::kConfirmed) continue;
+    auto it = confirmed_.find(track.track_id);
+    if (it == confirmed_.end()) {
+      // Tracks are (north, east).
+      const sim2d::Vec2 position(track.position_ne_m.y(), track.position_ne_m.x());
+      Confirmation confirmation;
+      confirmation.t_s = t_s;
+      confirmation.on_fire = OnFire(simulation.fire(), position, t_s);
+      it = confirmed_.emplace(track.track_id, confirmation).first;
     }
-    // Tracks are (north, east).
-    const sim2d::Vec2 position(track.position_ne_m.y(), track.position_ne_m.x());
-    confirmed_[track.track_id] = Confirmation{t_s, OnFire(simulation.fire(), position, t_s)};
+    if (it->second.reports_seen != track.report_count) {
+      it->second.reports_seen = track.report_count;
+      TakeFireCentres(simulation.fire(), it->second);
+    }
+  }
+}
+
+void Scorer::TakeFireCentres(const sim2d::FireGrid& grid, Confirmation& confirmation) const {
+  confirmation.fire_centres_m.clear();
+  for (const FireSpec& fire : fires_) {
+    const common::EastNorth ignition = scenario_.area.frame.ToLocal(fire.position);
+    confirmation.fire_centres_m.push_back(
+        FireHotCentre(grid, sim2d::Vec2(ignition.east_m, ignition.north_m)));
   }
 }
 
@@ -173,6 +227,7 @@ void Scorer::ScoreFires(const server::Server& server, Report& report) const {
   for (const FireSpec& fire : fires_) {
     FireOutcome outcome;
     outcome.truth = fire.position;
+    outcome.ignition = fire.position;
     outcome.start_s = fire.start_s;
     report.fires.push_back(outcome);
   }
@@ -183,24 +238,29 @@ void Scorer::ScoreFires(const server::Server& server, Report& report) const {
   for (const auto& [confirmed_s, track_id] : order) {
     const server::FireTrack* track = server.fusion().Find(track_id);
     if (track == nullptr) continue;
-    // The nearest fire that had started by the confirmation.
+    const Confirmation& confirmation = confirmed_.at(track_id);
+    // Tracks are (north, east).
+    const sim2d::Vec2 fused_m(track->position_ne_m.y(), track->position_ne_m.x());
+    // The nearest fire that had started by the confirmation, where it burned.
     std::optional<std::size_t> nearest;
     double nearest_m = std::numeric_limits<double>::infinity();
+    sim2d::Vec2 nearest_truth_m = sim2d::Vec2::Zero();
     for (std::size_t i = 0; i < fires_.size(); ++i) {
       if (fires_[i].start_s > confirmed_s) continue;
-      const common::EastNorth truth = frame.ToLocal(fires_[i].position);
-      // Tracks are (north, east).
-      const double d = std::hypot(track->position_ne_m.x() - truth.north_m,
-                                  track->position_ne_m.y() - truth.east_m);
+      const common::EastNorth ignition = frame.ToLocal(fires_[i].position);
+      sim2d::Vec2 truth_m(ignition.east_m, ignition.north_m);
+      if (i < confirmation.fire_centres_m.size() && confirmation.fire_centres_m[i]) {
+        truth_m = *confirmation.fire_centres_m[i];
+      }
+      const double d = (fused_m - truth_m).norm();
       if (d < nearest_m) {
         nearest_m = d;
         nearest = i;
+        nearest_truth_m = truth_m;
       }
     }
-    const bool real =
-        nearest && (nearest_m <= kFireMatchRadiusM || confirmed_.at(track_id).on_fire);
-    const common::LatLon fused =
-        frame.ToGeodetic({track->position_ne_m.y(), track->position_ne_m.x()});
+    const bool real = nearest && (nearest_m <= kFireMatchRadiusM || confirmation.on_fire);
+    const common::LatLon fused = ToLatLon(frame, fused_m);
     if (!real) {
       FalseTrack false_track;
       false_track.track_id = track_id;
@@ -212,8 +272,11 @@ void Scorer::ScoreFires(const server::Server& server, Report& report) const {
     }
     FireOutcome& outcome = report.fires[*nearest];
     if (outcome.fused) continue;  // a duplicate track of a fire already matched
+    const common::EastNorth ignition = frame.ToLocal(outcome.ignition);
+    outcome.truth = ToLatLon(frame, nearest_truth_m);
     outcome.fused = fused;
     outcome.error_m = nearest_m;
+    outcome.ignition_error_m = (fused_m - sim2d::Vec2(ignition.east_m, ignition.north_m)).norm();
     outcome.first_report_s = track->first_seen_s;
     outcome.confirmed_s = confirmed_s;
     outcome.vehicles = ToInts(track->vehicle_ids);

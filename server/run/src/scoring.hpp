@@ -15,10 +15,15 @@
 //    altitude and heading (roll and pitch of the body are ignored).
 //  * min_separation_m: the smallest 3D distance between two flying vehicles,
 //    sampled every 50 ms, and sim2d's exact near-miss minimum.
-//  * fires: a confirmed track matches the nearest true fire that had started,
-//    within kFireMatchRadiusM of its ignition point; the first confirmed track
-//    matched to a fire is its fused position (error_m: to the ignition point, so
-//    a fire spreading in the wind adds its drift). A confirmed track farther out
+//  * fires: where a fire is, for its error, is where it burns when its track last
+//    got a report: the centre of its hot cells (FireHotCentre: the cells burning
+//    or still >= kVisibleExcessK over ambient that connect to its ignition cell).
+//    The sim burns whole 5 m cells, so a small fire is the cell its ignition
+//    point lies in, up to 3.5 m from that point; a large one spreads in the wind.
+//    The error to the ignition point is reported beside it.
+//    A confirmed track matches the nearest true fire that had started, within
+//    kFireMatchRadiusM of where it burned; the first confirmed track matched to
+//    a fire is its fused position. A confirmed track farther out
 //    that lies within kOnFireM of a fire cell that had ignited when it was
 //    confirmed is on the spread of a real fire: it is fused position of the
 //    nearest fire if that has none yet, otherwise a duplicate; never false.
@@ -40,6 +45,15 @@ namespace fireswarm::run::internal {
 inline constexpr double kFireMatchRadiusM = 30.0;
 /// A confirmed track this close to an ignited fire cell is on a real fire, m.
 inline constexpr double kOnFireM = 10.0;
+/// A cooling cell counts toward a fire's position while it is at least this
+/// much over ambient, K: the vehicles' detector floor (agents::DetectorConfig::min_excess_k).
+inline constexpr double kVisibleExcessK = 10.0;
+
+/// The centre of the hot cells (burning, or cooling but >= kVisibleExcessK over
+/// ambient) 8-connected through ignited cells to the cell under `ignition_m`,
+/// local ENU metres; nullopt when none is hot (not started, or burned out).
+std::optional<sim2d::Vec2> FireHotCentre(const sim2d::FireGrid& grid,
+                                         const sim2d::Vec2& ignition_m);
 
 /// The search area rasterised, with the cells a camera has seen.
 class CoverageGrid {
@@ -111,7 +125,12 @@ class Scorer {
   struct Confirmation {
     double t_s = 0.0;
     bool on_fire = false;  // near a fire cell that had ignited by then
+    // Where each fire burned (FireHotCentre, by index of fires_) when the track
+    // last got a report; taken again whenever its report count changes.
+    std::int32_t reports_seen = 0;
+    std::vector<std::optional<sim2d::Vec2>> fire_centres_m;
   };
+  void TakeFireCentres(const sim2d::FireGrid& grid, Confirmation& confirmation) const;
   std::map<std::int32_t, Confirmation> confirmed_;  // track ID -> when first seen confirmed
   std::vector<Collision> collisions_;
   std::size_t events_seen_ = 0;

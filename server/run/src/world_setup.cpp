@@ -120,12 +120,20 @@ std::vector<FireSpec> ExpandFires(const Scenario& scenario) {
   std::mt19937_64 rng(random.seed);
   std::uniform_real_distribution<double> east(box.min_corner().x(), box.max_corner().x());
   std::uniform_real_distribution<double> north(box.min_corner().y(), box.max_corner().y());
+  std::vector<sim2d::Vec2> placed_m;
+  for (const FireSpec& fire : fires) placed_m.push_back(Local(scenario.area, fire.position));
+  const auto spaced = [&](const sim2d::Vec2& p) {
+    return std::all_of(placed_m.begin(), placed_m.end(), [&](const sim2d::Vec2& other) {
+      return (p - other).norm() >= random.min_spacing_m;
+    });
+  };
   for (int i = 0; i < random.count; ++i) {
     bool placed = false;
     for (int draw = 0; draw < kMaxDrawsPerFire && !placed; ++draw) {
       const double e = east(rng);
       const double n = north(rng);
-      if (!Searchable(scenario.area, planner::Point(e, n))) continue;
+      if (!Searchable(scenario.area, planner::Point(e, n)) || !spaced(sim2d::Vec2(e, n))) continue;
+      placed_m.emplace_back(e, n);
       FireSpec fire;
       fire.position = scenario.area.frame.ToGeodetic({e, n});
       fire.radius_m = random.radius_m;
@@ -133,8 +141,10 @@ std::vector<FireSpec> ExpandFires(const Scenario& scenario) {
       placed = true;
     }
     if (!placed) {
-      throw ScenarioError(scenario.source +
-                          ": random_fires: cannot place a fire inside the search area");
+      throw ScenarioError(scenario.source + ": random_fires: cannot place fire " +
+                          std::to_string(i + 1) + " inside the search area at least " +
+                          std::to_string(random.min_spacing_m) +
+                          " m (min_spacing_m) from the others; lower count or min_spacing_m");
     }
   }
   return fires;

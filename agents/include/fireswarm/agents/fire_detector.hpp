@@ -19,8 +19,17 @@ namespace fireswarm::agents {
 struct FireDetectorConfig {
   DetectorConfig regions;    ///< per-frame hot-region thresholds
   GeolocationSigmas sigmas;  ///< input errors for each fix's covariance
-  /// A candidate is reported once seen in this many consecutive frames.
+  /// A candidate is a fire once seen in this many consecutive frames.
   int persist_frames = 3;
+  /// A fire is reported when its pass ends (the first frame it is missing from
+  /// after at least persist_frames in a row), so that its position averages
+  /// every frame of the pass, from the front of the image to the back: the
+  /// attitude noise and the pull toward the centre of a wrong altitude cancel
+  /// there, while the first three frames all lie at the front edge. One still
+  /// in view this long after its run of frames began is reported without
+  /// waiting (a vehicle hovering or circling over it), s. A pass at 10 m/s
+  /// under the seed camera at 60 m lasts about 8 s.
+  double max_pass_wait_s = 10.0;
   /// A reported fire is not reported again sooner than this, s; and while it
   /// stays in view (seen in every frame) it is not reported again at all.
   double report_interval_s = 15.0;
@@ -83,8 +92,9 @@ class FireDetector {
   std::size_t candidate_count() const { return candidates_.size(); }
 
   /// Fixes beyond this count enter a candidate's mean with weight 1/kMaxAveragedFixes,
-  /// so a fire that grows or drifts is followed.
-  static constexpr int kMaxAveragedFixes = 30;
+  /// so a fire that grows or drifts is followed: a little over one pass (10 s
+  /// at the seed camera's 9 Hz).
+  static constexpr int kMaxAveragedFixes = 100;
   /// A fire only ever seen cut by the image edge is reported after this many
   /// times persist_frames consecutive sightings.
   static constexpr int kClippedPersistFactor = 3;
@@ -94,9 +104,10 @@ class FireDetector {
     Eigen::Vector2d north_east_m = Eigen::Vector2d::Zero();  // in anchor_
     Eigen::Matrix2d navigation_covariance = Eigen::Matrix2d::Zero();
     Eigen::Matrix2d pixel_covariance = Eigen::Matrix2d::Zero();
-    int fixes = 0;               // averaged into north_east_m
-    bool has_whole_fix = false;  // a fix from a region not cut by the image edge
-    int streak = 0;              // consecutive frames seen, ending at last_frame
+    int fixes = 0;                // averaged into north_east_m
+    bool has_whole_fix = false;   // a fix from a region not cut by the image edge
+    int streak = 0;               // consecutive frames seen, ending at last_frame
+    double streak_start_s = 0.0;  // time of the streak's first frame
     std::uint64_t last_frame = 0;
     double last_seen_s = 0.0;
     bool reported = false;              // ever
@@ -116,6 +127,7 @@ class FireDetector {
   std::size_t Associate(const Fix& fix);
   void Fold(Candidate& candidate, const Fix& fix);
   bool DueForReport(const Candidate& candidate, double time_s) const;
+  bool PassEnded(const Candidate& candidate) const { return candidate.last_frame + 1 == frame_; }
   FireDetection Report(const Candidate& candidate, double time_s, const ObserverPose& pose) const;
   void Forget(double time_s);
 

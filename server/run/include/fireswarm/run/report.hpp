@@ -19,15 +19,19 @@ namespace fireswarm::run {
 
 /// One true fire and what the fleet made of it.
 struct FireOutcome {
+  /// Where the fire burned when its track last got a report (the centre of its
+  /// hot cells); the ignition point when it was never confirmed.
   common::LatLon truth;
+  common::LatLon ignition;  ///< the scenario's fire position
   double start_s = 0.0;
   /// The confirmed track matched to it (nearest within the match radius); absent
   /// when it was never confirmed.
   std::optional<common::LatLon> fused;
-  std::optional<double> error_m;         ///< fused to true distance
-  std::optional<double> first_report_s;  ///< first report that went into its track
-  std::optional<double> confirmed_s;     ///< when its track was confirmed
-  std::vector<int> vehicles;             ///< receiver IDs that reported it, ascending
+  std::optional<double> error_m;           ///< fused to true distance
+  std::optional<double> ignition_error_m;  ///< fused to ignition point distance
+  std::optional<double> first_report_s;    ///< first report that went into its track
+  std::optional<double> confirmed_s;       ///< when its track was confirmed
+  std::vector<int> vehicles;               ///< receiver IDs that reported it, ascending
   /// Fused covariance, (north, east) m^2: [nn, ne, ee]; for the map's ellipse.
   std::optional<std::array<double, 3>> covariance_ne_m2;
 };

@@ -65,14 +65,15 @@ inline constexpr int kMaxReceiverId = radio::kBroadcastId - 1;
 inline constexpr std::uint64_t kDefaultSeed = 1;
 inline constexpr double kDefaultDurationS = 3'600.0;
 inline constexpr double kDefaultFireRadiusM = 10.0;
-inline constexpr double kDefaultDistractorRadiusM = 5.0;  ///< sim2d::Distractor's
-inline constexpr double kDefaultDistractorTempC = 55.0;   ///< sim2d::Distractor's
+inline constexpr double kDefaultRandomFireSpacingM = 70.0;  ///< twice the fusion's 35 m gate
+inline constexpr double kDefaultDistractorRadiusM = 5.0;    ///< sim2d::Distractor's
+inline constexpr double kDefaultDistractorTempC = 55.0;     ///< sim2d::Distractor's
 inline constexpr std::string_view kDefaultCamera = "seed";
 /// Stands at the launch site are at least this far apart (centre to centre), m:
 /// each vehicle holds its GPS position while it climbs, and two GPS biases
 /// (2.5 m CEP each, agents::GeolocationSigmas) differ by ~3 m per axis (1 sigma),
 /// so a few metres would let two climbing vehicles meet.
-inline constexpr double kDefaultStandSpacingM = 10.0;
+inline constexpr double kDefaultStandSpacingM = 20.0;
 
 struct FleetConfig {
   int count = 0;     ///< drones, 1..254 (required)
@@ -116,6 +117,11 @@ struct RandomFiresSpec {
   int count = 0;
   std::uint64_t seed = kDefaultSeed;  ///< defaults to the scenario's seed
   double radius_m = kDefaultFireRadiusM;
+  /// Least distance between two fires' centres (random ones and those of
+  /// `fires`), m: the server's fusion takes reports less than its 35 m gate
+  /// apart for one fire (server::FireFusionConfig::min_gate_m), so closer fires
+  /// would be scored as one found and one missed.
+  double min_spacing_m = kDefaultRandomFireSpacingM;
 };
 
 /// A hot patch that is not fire (sun-heated rock): a disc at a fixed temperature.
