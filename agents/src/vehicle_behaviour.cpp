@@ -73,6 +73,15 @@ void Vehicle::HoldHere(double altitude_m) {
   StartRoute({here}, 0);
 }
 
+double Vehicle::ClimbOutAltitudeM() const {
+  const Mission* mission = missions_.IsComplete(active_mission_) ? missions_.complete() : nullptr;
+  if (mission != nullptr && !mission->waypoints.empty() &&
+      mission->waypoints.front().altitude_m > 0.0) {
+    return mission->waypoints.front().altitude_m;
+  }
+  return Param(ParamId::kTakeoffAltitudeM);
+}
+
 void Vehicle::EnterMode(FlightMode mode, Nanos now) {
   const Estimate& state = estimator_.estimate();
   // Leaving the search (for a hold, a loiter, a return): remember where to resume,
@@ -92,7 +101,10 @@ void Vehicle::EnterMode(FlightMode mode, Nanos now) {
       estimator_.ZeroAltitude();
       cascade_.Reset();
       navigator_->ResetWindEstimate();
-      HoldHere(Param(ParamId::kTakeoffAltitudeM));
+      // Straight up over the stand to its own altitude layer (the first
+      // waypoint's), and only then toward the first waypoint: neighbours that
+      // leave together turn away in different layers.
+      HoldHere(ClimbOutAltitudeM());
       break;
     case FlightMode::kSearch:
       // Back to the point it left the route first: straight to the next waypoint
@@ -112,9 +124,12 @@ void Vehicle::EnterMode(FlightMode mode, Nanos now) {
       HoldHere(state.altitude_m);
       break;
     case FlightMode::kReturnToLaunch: {
+      // At the altitude it was flying to (its mission's return altitude, its
+      // layer), never below the take-off altitude.
       RoutePoint home;
       home.position = home_.value_or(state.position);
-      home.altitude_m = std::max(state.altitude_m, Param(ParamId::kTakeoffAltitudeM));
+      home.altitude_m =
+          std::max(navigation_setpoint_.altitude_m, Param(ParamId::kTakeoffAltitudeM));
       StartRoute({home}, 0);
       break;
     }
@@ -261,7 +276,7 @@ CascadeSetpoint Vehicle::Behave(Nanos now, std::optional<double> nav_dt_us) {
 
   switch (mode_) {
     case FlightMode::kTakeoff:
-      if (state.altitude_m > Param(ParamId::kTakeoffAltitudeM) - kTakeoffDoneBelowM) {
+      if (state.altitude_m > ClimbOutAltitudeM() - kTakeoffDoneBelowM) {
         EnterMode(missions_.IsComplete(active_mission_) ? FlightMode::kSearch : FlightMode::kHold,
                   now);
       }

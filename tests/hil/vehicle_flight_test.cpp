@@ -2,6 +2,7 @@
 // a square mission in both navigation modes, landing back home.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -149,6 +150,51 @@ TEST(VehicleFlight, ANewMissionMidSearchFliesFromItsFirstWaypoint) {
   });
   EXPECT_LT(closest_m, 5.0);
   EXPECT_NEAR(altitude_there_m, vehicle.params().Get(agents::ParamId::kTakeoffAltitudeM), 3.0);
+}
+
+TEST(VehicleFlight, ClimbsStraightUpToItsLayerBeforeItTurnsAway) {
+  // Neighbours take off together: each must climb over its own stand to its own
+  // layer (its first waypoint's altitude), not turn away on one shared take-off
+  // altitude toward the others' stands (swarm20 once: 0.23 m at climb-out).
+  constexpr double kLayerM = kAltitudeM + 9.0;
+  Mission mission(OneVehicleWorld());
+  agents::Vehicle& vehicle = mission.AddVehicle(VehicleOne());
+  mission.RunUntil(1.0);
+  mission.link.UploadAndStart(1, 7, {WaypointAt(mission, Vec2(0.0, 800.0), kLayerM)});
+  double widest_below_layer_m = 0.0;  // off the stand while still under the layer
+  testing::RunUntilOr(mission, 90.0, [&] {
+    const sim2d::VehicleTruth& truth = mission.Truth(1);
+    if (truth.altitude_m < kLayerM - 3.0) {
+      widest_below_layer_m = std::max(widest_below_layer_m, truth.position_m.norm());
+    }
+    return vehicle.mode() == FlightMode::kSearch && truth.position_m.norm() > 100.0;
+  });
+  std::printf("climb-out to %.0f m: %.2f m off the stand below %.0f m\n", kLayerM,
+              widest_below_layer_m, kLayerM - 3.0);
+  ASSERT_EQ(vehicle.mode(), FlightMode::kSearch);
+  EXPECT_LT(widest_below_layer_m, 5.0);  // the GPS bias wandering under the hold
+}
+
+TEST(VehicleFlight, FliesHomeAtTheAltitudeItsMissionEndsAt) {
+  // A mission ends with its way home: a waypoint over the last one at the drone's
+  // own return altitude. The return holds that altitude, not the one measured
+  // when the last waypoint was passed (still the layer, mid-climb).
+  constexpr double kReturnM = kAltitudeM + 15.0;
+  Mission mission(OneVehicleWorld());
+  agents::Vehicle& vehicle = mission.AddVehicle(VehicleOne());
+  mission.RunUntil(1.0);
+  mission.link.UploadAndStart(1, 7,
+                              {WaypointAt(mission, Vec2(0.0, 400.0), kAltitudeM),
+                               WaypointAt(mission, Vec2(0.0, 400.0), kReturnM)});
+  testing::RunUntilOr(mission, 200.0,
+                      [&] { return vehicle.mode() == FlightMode::kReturnToLaunch; });
+  ASSERT_EQ(vehicle.mode(), FlightMode::kReturnToLaunch);
+  // Half-way home, the climb is long done.
+  testing::RunUntilOr(mission, 300.0, [&] { return mission.Truth(1).position_m.y() < 200.0; });
+  std::printf("half-way home at %.1f m (return altitude %.0f m)\n", mission.Truth(1).altitude_m,
+              kReturnM);
+  EXPECT_EQ(vehicle.mode(), FlightMode::kReturnToLaunch);
+  EXPECT_NEAR(mission.Truth(1).altitude_m, kReturnM, 2.5);  // baro bias and noise
 }
 
 // A 200 m square at 60 m, flown in `mode`; returns, per corner, the closest the

@@ -7,6 +7,8 @@
 #include <random>
 #include <string>
 
+#include "fireswarm/radio/mission_chunks.hpp"
+
 namespace fireswarm::run::internal {
 namespace {
 
@@ -154,7 +156,13 @@ std::vector<server::DroneMission> InAltitudeLayers(std::vector<server::DroneMiss
   for (std::size_t k = 0; k < missions.size(); ++k) {
     const double offset_m =
         kAltitudeLayerM * static_cast<double>(k % static_cast<std::size_t>(kAltitudeLayers));
-    for (radio::Waypoint& waypoint : missions[k].waypoints) waypoint.altitude_m += offset_m;
+    std::vector<radio::Waypoint>& route = missions[k].waypoints;
+    for (radio::Waypoint& waypoint : route) waypoint.altitude_m += offset_m;
+    if (route.empty() || route.size() >= radio::kMaxMissionWaypoints) continue;
+    radio::Waypoint way_home = route.back();
+    way_home.altitude_m += kAltitudeLayerM * static_cast<double>(k) - offset_m;
+    way_home.flags = 0;  // no lane starts here
+    route.push_back(way_home);
   }
   return missions;
 }

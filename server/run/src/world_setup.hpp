@@ -19,7 +19,7 @@ namespace fireswarm::run::internal {
 std::vector<FireSpec> ExpandFires(const Scenario& scenario);
 
 /// Where each vehicle stands at launch, local ENU metres (the area's frame): on a
-/// ring around the launch site, at least fleet.stand_spacing_m apart (10 m by
+/// ring around the launch site, at least fleet.stand_spacing_m apart (20 m by
 /// default), each in the direction of its first waypoint so that climb-outs run
 /// radially outward and never cross. Keyed by receiver ID.
 std::map<int, sim2d::Vec2> StandPositions(const Scenario& scenario,
@@ -30,6 +30,12 @@ std::map<int, sim2d::Vec2> StandPositions(const Scenario& scenario,
 /// drones whose transits, investigations or returns cross never share an altitude
 /// band (sim2d counts contacts only when bands overlap). Going higher only widens
 /// the camera footprint, so the planner's lanes still overlap.
+///
+/// Each route then ends with a return waypoint over its last one at the drone's
+/// own return altitude, kAltitudeLayerM * k above the fleet's altitude, so every
+/// drone flies home at an altitude of its own: the sorties end together and the
+/// returns converge on neighbouring stands (a vehicle returns at the altitude it
+/// was flying to, agents' return to launch).
 inline constexpr int kAltitudeLayers = 3;
 inline constexpr double kAltitudeLayerM = 3.0;
 std::vector<server::DroneMission> InAltitudeLayers(std::vector<server::DroneMission> missions);

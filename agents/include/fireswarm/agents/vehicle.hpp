@@ -99,6 +99,9 @@ class Vehicle final : public radio::VehicleRequestHandler {
   void EnterMode(radio::FlightMode mode, Nanos now);
   void StartRoute(std::vector<RoutePoint> route, std::size_t start_index);
   void HoldHere(double altitude_m);
+  /// The take-off's target: the active mission's first waypoint altitude (its
+  /// layer), or the take-off altitude parameter when it gives none, m.
+  double ClimbOutAltitudeM() const;
   CascadeSetpoint Behave(Nanos now, std::optional<double> nav_dt_us);
   double Param(ParamId id) const { return static_cast<double>(params_.Get(id)); }
   void CheckSafety(Nanos now);
