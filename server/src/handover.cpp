@@ -150,9 +150,26 @@ LaneHandOver HandOverLanes(const std::vector<radio::Waypoint>& orphaned,
   }
 
   for (std::size_t i = 0; i < takers.size(); ++i) {
-    if (loads[i].added.empty()) continue;
+    Load& load = loads[i];
+    if (load.added.empty()) continue;
     std::vector<radio::Waypoint> route = takers[i].remaining;
-    route.insert(route.end(), loads[i].added.begin(), loads[i].added.end());
+    // Its own route ended on the way home (the planner's transit, the return
+    // altitude); after the extra lanes it goes back there, around the zones,
+    // rather than straight home from the last one.
+    if (!route.empty()) {
+      radio::Waypoint home_leg = route.back();
+      home_leg.flags = 0;
+      home_leg.speed_mps = takers[i].speed_mps;
+      const Eigen::Vector2d to = NorthEastOf(frame, home_leg);
+      for (const Eigen::Vector2d& corner :
+           JoinCorners(around, load.end_ne_m, to, result.straight_joins)) {
+        radio::Waypoint waypoint = WaypointAt(frame, corner, takers[i], /*lane_start=*/false);
+        waypoint.altitude_m = home_leg.altitude_m;
+        load.added.push_back(waypoint);
+      }
+      load.added.push_back(home_leg);
+    }
+    route.insert(route.end(), load.added.begin(), load.added.end());
     result.routes[takers[i].vehicle] = std::move(route);
   }
   return result;

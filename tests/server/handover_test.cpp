@@ -162,6 +162,28 @@ TEST(HandOverLanes, JoinsGoAroundTheNoFlyZones) {
   for (const radio::Waypoint& w : route) EXPECT_DOUBLE_EQ(w.altitude_m, 60.0);
 }
 
+TEST(HandOverLanes, ATakerEndsWhereItsOwnRouteEndedGoingAroundTheZones) {
+  // Its own route ends on the way home, over the launch site at its return
+  // altitude (75 m); the lost lanes lie east, a zone between them and home.
+  const std::vector<radio::Waypoint> own = {At(0, 500, true), At(0, 900, false),
+                                            At(0, 0, false, 75.0)};
+  const std::vector<radio::Waypoint> orphaned = {At(1000, 0, true), At(1000, 1000, false)};
+  const planner::MultiPolygon zones{Rect(400, 300, 600, 700)};
+  const planner::TransitPlanner around(zones, planner::Box{{-1000, -1000}, {2500, 2500}}, 1);
+  const Taker taker = TakerAt(1, 0.0, own, 60.0);
+  const LaneHandOver handed = HandOverLanes(orphaned, {taker}, kFrame, &around);
+  ASSERT_TRUE(handed.routes.contains(1));
+  const std::vector<radio::Waypoint>& route = handed.routes.at(1);
+  EXPECT_EQ(LanesIn(route), (std::set<std::pair<long, long>>{{0, 900}, {1000, 1000}}));
+  // Back to the end of its own route, at its altitude, and no lane starts there.
+  const common::EastNorth end = kFrame.ToLocal({route.back().lat_deg, route.back().lon_deg});
+  EXPECT_NEAR(end.east_m, 0.0, 0.01);
+  EXPECT_NEAR(end.north_m, 0.0, 0.01);
+  EXPECT_DOUBLE_EQ(route.back().altitude_m, 75.0);
+  EXPECT_EQ(route.back().flags, 0);
+  EXPECT_EQ(planner::InteriorLengthM(FlownPath(taker, route), zones), 0.0);
+}
+
 TEST(HandOverLanes, AJoinThatCannotBeRoutedStaysStraightAndIsCounted) {
   // The taker has drifted 50 m into a zone: no transit can start there.
   const std::vector<radio::Waypoint> orphaned = {At(1000, 0, true), At(1000, 1000, false)};

@@ -374,7 +374,8 @@ TEST(Server, ALostDronesLanesGoToTheOthersAsNewMissions) {
     const radio::Command* start = LastOf(vehicle, radio::CommandType::kStartMission);
     ASSERT_NE(start, nullptr);
     EXPECT_EQ(start->mission_id, mission.mission_id);
-    ASSERT_EQ(mission.waypoints.size(), 6U) << "own 2 lanes and one of vehicle 2's";
+    ASSERT_EQ(mission.waypoints.size(), 7U)
+        << "own 2 lanes, one of vehicle 2's, back to where its own route ended";
     const common::EastNorth given =
         kFrame.ToLocal({mission.waypoints[4].lat_deg, mission.waypoints[4].lon_deg});
     EXPECT_TRUE(std::abs(given.east_m - 400.0) < 1.0 || std::abs(given.east_m - 600.0) < 1.0)

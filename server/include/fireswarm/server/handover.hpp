@@ -50,7 +50,9 @@ struct LaneHandOver {
 };
 
 /// The lost drone's `orphaned` waypoints (from the one it was flying away from)
-/// shared out among `takers` (not empty). `around`: the no-fly zones' transit
+/// shared out among `takers` (not empty). A taker's new route is its remaining
+/// waypoints, its share of the lanes, then back to where its remaining route
+/// ended (the way home, at its return altitude). `around`: the no-fly zones' transit
 /// planner (in `frame`'s local metres), or null for straight joins. Routes nothing
 /// when `orphaned` has no lane.
 LaneHandOver HandOverLanes(const std::vector<radio::Waypoint>& orphaned,
