@@ -1,11 +1,14 @@
 // The server's side of the no-fly zones for investigations: which circle may be
 // flown and which vehicle may be sent to it. A vehicle ordered to investigate
-// flies straight from where it is to the circle's nearest point, then circles
-// (agents' investigate behaviour); both must stay out of every zone. The joins of
+// flies straight from where it is to the circle's nearest point, circles, and
+// flies straight back to where it left its lane (agents' investigate
+// behaviour); all of it must stay out of every zone. The joins of
 // handed-over lanes are routed in handover.cpp with the same transit planner.
 #include <algorithm>
+#include <boost/geometry.hpp>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <string>
 
 #include "fireswarm/server/server.hpp"
@@ -25,6 +28,29 @@ constexpr double kTransitMarginM = 1'000.0;
 
 std::string Metres(double value_m) {
   return std::to_string(static_cast<long>(std::lround(value_m))) + " m";
+}
+
+// Sides of the polygon that stands for a circle, drawn around it.
+constexpr int kCircleSides = 32;
+
+// The ground a vehicle may cross on an investigation: straight from `from` to
+// the circle, around it, and, when it is done, straight back from wherever it
+// is on the circle to where it left its lane (`from`, give or take the metres
+// flown before the order arrived): the convex hull of `from` and the circle.
+planner::Polygon InvestigationHull(const planner::Point& from, const planner::Point& centre,
+                                   double radius_m) {
+  boost::geometry::model::multi_point<planner::Point> points;
+  points.push_back(from);
+  // Circumscribed: every side lies outside the circle.
+  const double outer_m = radius_m / std::cos(std::numbers::pi / kCircleSides);
+  for (int k = 0; k < kCircleSides; ++k) {
+    const double angle = 2.0 * std::numbers::pi * k / kCircleSides;
+    points.emplace_back(centre.x() + outer_m * std::cos(angle),
+                        centre.y() + outer_m * std::sin(angle));
+  }
+  planner::Polygon hull;
+  boost::geometry::convex_hull(points, hull);
+  return hull;
 }
 
 }  // namespace
@@ -70,13 +96,10 @@ std::optional<std::string> Server::ApproachRefusal(std::uint8_t vehicle,
     return name + " has sent no position: its approach cannot be checked against the no-fly zones";
   }
   const Eigen::Vector2d from_ne_m = NorthEast(frame_, {telemetry->lat_deg, telemetry->lon_deg});
-  // The circle's nearest point (from the centre itself, any: north).
-  const Eigen::Vector2d away = from_ne_m - point_ne_m;
-  const Eigen::Vector2d outward =
-      away.norm() > 0.0 ? Eigen::Vector2d(away / away.norm()) : Eigen::Vector2d::UnitX();
-  const Eigen::Vector2d entry_ne_m = point_ne_m + outward * radius_m;
-  if (!transit_->IsClear(PlannerPoint(from_ne_m), PlannerPoint(entry_ne_m))) {
-    return name + "'s straight approach to the circle crosses a no-fly zone";
+  const planner::Polygon hull =
+      InvestigationHull(PlannerPoint(from_ne_m), PlannerPoint(point_ne_m), radius_m);
+  if (boost::geometry::intersects(hull, config_.no_fly)) {
+    return name + "'s straight way to the circle or back to its lane crosses a no-fly zone";
   }
   return std::nullopt;
 }
@@ -114,8 +137,8 @@ std::optional<std::uint8_t> Server::BestPlacedFor(const Eigen::Vector2d& point_n
     }
   }
   if (!best && why_none != nullptr) {
-    *why_none = blocked > 0 ? "no searching vehicle has a straight approach clear of the no-fly "
-                              "zones (" +
+    *why_none = blocked > 0 ? "no searching vehicle has a straight way there and back clear of "
+                              "the no-fly zones (" +
                                   std::to_string(blocked) + " would cross one)"
                             : "no searching vehicle with a working link";
   }

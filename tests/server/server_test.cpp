@@ -174,6 +174,24 @@ TEST(Server, SendsNoInvestigatorWhoseStraightApproachCrossesANoFlyZone) {
   EXPECT_EQ(LastOf(fleet.air.vehicle(1), radio::CommandType::kInvestigate), nullptr);
 }
 
+TEST(Server, SendsNoInvestigatorWhoseWayBackToItsLaneCrossesANoFlyZone) {
+  // Vehicle 1 at the origin, points 200 m north and south of it. Its way north
+  // is clear, but a zone 3 to 9 m east of that line lies where it flies back
+  // from the east side of the circle to where it left its lane.
+  Fleet fleet(WithNoFly(Zone(3, 90, 9, 110)));
+  fleet.RunFor(3 * kSecond);  // every vehicle's position in
+  const auto retask = [&](double north_m, std::string* why) {
+    const OperatorCommand command{OperatorCommand::Kind::kRetaskVehicle, 1,
+                                  kFrame.ToGeodetic({0.0, north_m}), 0.0, ""};
+    return fleet.server.Handle(command, fleet.air.channel.now(), why);
+  };
+  std::string why;
+  EXPECT_FALSE(retask(200.0, &why));
+  EXPECT_EQ(why,
+            "vehicle 1's straight way to the circle or back to its lane crosses a no-fly zone");
+  EXPECT_TRUE(retask(-200.0, &why)) << why;
+}
+
 TEST(Server, SendsNobodyToCircleIntoANoFlyZoneAndJournalsWhy) {
   // The fire is 10 m from a zone: the vehicles' 20 m circle around it would enter it.
   Fleet fleet(WithNoFly(Zone(160, -100, 200, 100)));
@@ -205,7 +223,8 @@ TEST(Server, RefusesAnOperatorInvestigationIntoANoFlyZoneWithTheReason) {
   EXPECT_FALSE(order(Kind::kInvestigatePoint, 0, 90, 0, &why));
   EXPECT_EQ(why, "the 20 m circle around the point enters a no-fly zone");
   EXPECT_FALSE(order(Kind::kRetaskVehicle, 2, 50, 0, &why));
-  EXPECT_EQ(why, "vehicle 2's straight approach to the circle crosses a no-fly zone");
+  EXPECT_EQ(why,
+            "vehicle 2's straight way to the circle or back to its lane crosses a no-fly zone");
   // West of the zone only vehicle 1 can go.
   EXPECT_TRUE(order(Kind::kInvestigatePoint, 0, 50, 0, &why)) << why;
   ASSERT_EQ(fleet.server.investigations().size(), 1u);
@@ -213,8 +232,8 @@ TEST(Server, RefusesAnOperatorInvestigationIntoANoFlyZoneWithTheReason) {
   // With 1 busy, nobody has a clear way there.
   EXPECT_FALSE(order(Kind::kInvestigatePoint, 0, 40, 50, &why));
   EXPECT_EQ(why,
-            "no searching vehicle has a straight approach clear of the no-fly zones (2 would "
-            "cross one)");
+            "no searching vehicle has a straight way there and back clear of the no-fly zones (2 "
+            "would cross one)");
 }
 
 TEST(Server, RejectsATrackTheInvestigatorDidNotSeeAgain) {

@@ -19,7 +19,8 @@
 // No-fly zones (ServerConfig::no_fly): the legs the server makes up keep out of
 // them as the planner's do. A taker's joins to the lanes it is handed go around
 // them (planner::TransitPlanner), and a vehicle is sent to investigate only when
-// its straight approach to the circle and the circle itself enter none; when no
+// the convex hull of where it is and the circle enters none (its straight way
+// there, the circle, and its straight way back to its lane); when no
 // vehicle can go, none is sent and the reason is journaled (server_airspace.cpp).
 #pragma once
 
