@@ -209,6 +209,7 @@ std::vector<radio::Burst> Server::Step(radio::Nanos now, std::span<const std::ui
   for (const radio::SchedulerEvent& event : scheduler_->TakeEvents()) OnEvent(event, now_s);
   CheckInvestigations(now);
   HandOverLostDrones(now_s);
+  RecallHandedOverDrones(now_s);
   UpdateState(now_s);
   return bursts;
 }

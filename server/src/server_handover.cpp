@@ -2,7 +2,7 @@
 // the registry's lost time, it is given up and the lanes it had still to fly go
 // to the drones still searching (handover.hpp says how they are shared out), each
 // as a new mission uploaded and started like the first, its joins to the new
-// lanes routed around the no-fly zones.
+// lanes routed around the no-fly zones. If it is heard again, it is sent home.
 #include <string>
 
 #include "fireswarm/server/handover.hpp"
@@ -49,6 +49,7 @@ void Server::HandOver(std::uint8_t lost, double now_s) {
   const std::string why =
       "lost: not heard for " + std::to_string(static_cast<int>(config_.link.lost_after_s)) + " s";
   mission_->MarkLost(lost, why);
+  handed_over_[lost] = false;
   // New mission IDs above every one in use, so no vehicle takes one for another.
   std::uint16_t next_id = 0;
   for (const std::uint8_t id : mission_->vehicles()) {
@@ -70,6 +71,29 @@ void Server::HandOver(std::uint8_t lost, double now_s) {
   // Only when it happened, so a journal without zones reads as before.
   if (handed.straight_joins > 0) record["straight_joins"] = handed.straight_joins;
   Record(now_s, "handover", std::move(record));
+}
+
+// A drone given up as lost may only have been out of reach. Its lanes are
+// someone else's now, and the taker may fly them on the same layer: when it is
+// heard again still flying its mission, it is ordered home, once (the
+// scheduler retries the command until the vehicle acknowledges it).
+void Server::RecallHandedOverDrones(double now_s) {
+  for (auto& [id, recalled] : handed_over_) {
+    if (recalled || registry_.LinkAt(id, now_s) != LinkState::kOk) continue;
+    const std::optional<radio::Telemetry>& telemetry = registry_.state(id).telemetry;
+    if (!telemetry) continue;
+    const radio::FlightMode mode = telemetry->mode;
+    if (mode != radio::FlightMode::kSearch && mode != radio::FlightMode::kInvestigate &&
+        mode != radio::FlightMode::kTakeoff && mode != radio::FlightMode::kHold) {
+      continue;  // on its way home or down already
+    }
+    radio::Command command;
+    command.type = radio::CommandType::kReturnToLaunch;
+    scheduler_->SendCommand(id, command);
+    recalled = true;
+    Record(now_s, "recall",
+           {{"vehicle", id}, {"why", "heard again after its lanes were handed over"}});
+  }
 }
 
 }  // namespace fireswarm::server

@@ -144,8 +144,9 @@ Server Server::Restore(const ServerConfig& config, const common::LocalFrame& fra
         server.journaled_phases_[vehicle] = phase;
       } else if (entry.kind == "handover") {
         if (!server.mission_) throw std::runtime_error("handover before any mission");
-        server.mission_->MarkLost(data.at("lost").get<std::uint8_t>(),
-                                  data.at("why").get<std::string>());
+        const auto lost = data.at("lost").get<std::uint8_t>();
+        server.mission_->MarkLost(lost, data.at("why").get<std::string>());
+        server.handed_over_[lost] = false;
         for (DroneMission& m : MissionsFrom(data.at("drones"))) {
           server.mission_->Replace(std::move(m), /*send=*/false);
         }
@@ -166,6 +167,8 @@ Server Server::Restore(const ServerConfig& config, const common::LocalFrame& fra
         server.investigations_.push_back(InvestigationFrom(entry));
       } else if (entry.kind == "investigate_order") {
         // The order itself is carried out by its "investigation" entry.
+      } else if (entry.kind == "recall") {
+        server.handed_over_[data.at("vehicle").get<std::uint8_t>()] = true;
       } else if (entry.kind == "no_investigation") {
         // Why a new track got no investigator: for the operator, nothing to rebuild.
       } else {

@@ -355,6 +355,33 @@ void StartLaneMission(Air& air, Server& server) {
   air.Run(server, 60 * kSecond, [&] { return server.state() == MissionState::kRunning; });
 }
 
+TEST(Server, ADroneGivenUpAsLostIsSentHomeWhenHeardAgain) {
+  Air air(0.0);
+  Server server(ServerConfig{}, kFrame);
+  StartLaneMission(air, server);
+  air.silent.insert(2);
+  air.Run(server, air.channel.now() + 30 * kSecond,
+          [&] { return server.mission()->progress(2).phase == DronePhase::kFailed; });
+  ASSERT_EQ(server.mission()->progress(2).phase, DronePhase::kFailed);
+  ASSERT_EQ(LastOf(air.vehicle(2), radio::CommandType::kReturnToLaunch), nullptr);
+
+  // Only out of reach: it is heard again, still searching its old lanes, which
+  // 1 and 3 now fly. It is ordered home, once.
+  air.silent.erase(2);
+  air.Run(server, air.channel.now() + 30 * kSecond,
+          [&] { return LastOf(air.vehicle(2), radio::CommandType::kReturnToLaunch) != nullptr; });
+  EXPECT_NE(LastOf(air.vehicle(2), radio::CommandType::kReturnToLaunch), nullptr);
+  EXPECT_EQ(LastOf(air.vehicle(1), radio::CommandType::kReturnToLaunch), nullptr);
+  air.Run(server, air.channel.now() + 10 * kSecond, [] { return false; });
+  std::vector<JournalEntry> journal = server.TakeJournalEntries();
+  EXPECT_EQ(
+      std::ranges::count_if(journal, [](const JournalEntry& e) { return e.kind == "recall"; }), 1);
+  EXPECT_TRUE(Journaled(journal, "recall", "heard again after its lanes were handed over"));
+  // A restarted server knows it was recalled and leaves it be.
+  Server restored = Server::Restore(ServerConfig{}, kFrame, journal);
+  EXPECT_EQ(restored.mission()->progress(2).phase, DronePhase::kFailed);
+}
+
 TEST(Server, ALostDronesLanesGoToTheOthersAsNewMissions) {
   Air air(0.0);
   Server server(ServerConfig{}, kFrame);

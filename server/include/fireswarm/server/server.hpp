@@ -202,6 +202,7 @@ class Server {
   void SendToAll(radio::CommandType type);
   void HandOverLostDrones(double now_s);
   void HandOver(std::uint8_t lost, double now_s);
+  void RecallHandedOverDrones(double now_s);
   std::vector<Taker> TakersFor(std::uint8_t lost, double now_s) const;
   radio::Nanos VerdictDue(const Investigation& investigation) const;
   void CheckInvestigations(radio::Nanos now);
@@ -218,6 +219,9 @@ class Server {
   MissionState state_ = MissionState::kIdle;
   double mission_started_s_ = 0.0;
   std::vector<Investigation> investigations_;
+  // Drones given up as lost whose lanes went to others -> ordered home since
+  // they were heard again (server_handover.cpp).
+  std::map<std::uint8_t, bool> handed_over_;
   std::map<std::pair<std::uint8_t, std::uint16_t>, double> report_receipts_;
   std::map<std::uint8_t, double> clock_offset_s_;  // mission time - vehicle clock, per vehicle
   std::map<std::uint8_t, DronePhase> journaled_phases_;
