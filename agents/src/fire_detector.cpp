@@ -173,7 +173,7 @@ void FireDetector::Fold(Candidate& candidate, const Fix& fix) {
 }
 
 bool FireDetector::DueForReport(const Candidate& candidate, double time_s) const {
-  if (candidate.streak < config_.persist_frames || candidate.reported_this_streak) return false;
+  if (candidate.streak < config_.persist_frames) return false;
   // Wait for a whole view of the fire, unless it stays cut by the edge (a fire
   // larger than the view).
   if (!candidate.has_whole_fix &&
@@ -183,8 +183,11 @@ bool FireDetector::DueForReport(const Candidate& candidate, double time_s) const
   if (candidate.reported && time_s - candidate.last_report_s < config_.report_interval_s) {
     return false;
   }
-  return PassEnded(candidate) ||
-         candidate.last_seen_s - candidate.streak_start_s >= config_.max_pass_wait_s;
+  if (PassEnded(candidate)) return !candidate.reported_this_streak;
+  // Still in view (a vehicle circling over it): every max_pass_wait_s of it.
+  const double since_s =
+      candidate.reported_this_streak ? candidate.last_report_s : candidate.streak_start_s;
+  return candidate.last_seen_s - since_s >= config_.max_pass_wait_s;
 }
 
 FireDetection FireDetector::Report(const Candidate& candidate, double time_s,

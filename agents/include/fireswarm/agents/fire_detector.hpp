@@ -26,12 +26,12 @@ struct FireDetectorConfig {
   /// every frame of the pass, from the front of the image to the back: the
   /// attitude noise and the pull toward the centre of a wrong altitude cancel
   /// there, while the first three frames all lie at the front edge. One still
-  /// in view this long after its run of frames began is reported without
-  /// waiting (a vehicle hovering or circling over it), s. A pass at 10 m/s
-  /// under the seed camera at 60 m lasts about 8 s.
+  /// in view this long after its run of frames began, or after its last report,
+  /// is reported without waiting (a vehicle hovering or circling over it: its
+  /// reports from around the circle are the investigation's second look), s.
+  /// A pass at 10 m/s under the seed camera at 60 m lasts about 8 s.
   double max_pass_wait_s = 10.0;
-  /// A reported fire is not reported again sooner than this, s; and while it
-  /// stays in view (seen in every frame) it is not reported again at all.
+  /// A reported fire is not reported again sooner than this, s.
   double report_interval_s = 15.0;
   /// A region joins the nearest candidate within
   /// max(gate_min_m, gate_sigmas * sqrt(largest eigenvalue of the summed covariances)).
@@ -111,7 +111,7 @@ class FireDetector {
     std::uint64_t last_frame = 0;
     double last_seen_s = 0.0;
     bool reported = false;              // ever
-    bool reported_this_streak = false;  // suppresses repeats while in view
+    bool reported_this_streak = false;  // the streak's end is then not reported again
     double last_report_s = 0.0;
     double peak_temperature_c = 0.0;  // over the current streak
     int pixel_count = 0;              // in the last frame
