@@ -14,7 +14,8 @@
 //    looking near the horizon), computed for level flight at the TRUE position,
 //    altitude and heading (roll and pitch of the body are ignored).
 //  * min_separation_m: the smallest 3D distance between two flying vehicles,
-//    sampled every 50 ms, and sim2d's exact near-miss minimum.
+//    sampled every 50 ms, and sim2d's exact near-miss minimum, which counts a
+//    pair while either one flies (a drone landing next to a parked one).
 //  * fires: where a fire is, for its error, is where it burns when its track last
 //    got a report: the centre of its hot cells (FireHotCentre: the cells burning
 //    or still >= kVisibleExcessK over ambient that connect to its ignition cell).
