@@ -11,6 +11,7 @@
 #include "fireswarm/run/scenario.hpp"
 #include "fireswarm/sim2d/fire_grid.hpp"
 #include "scoring.hpp"
+#include "small_area.hpp"
 #include "world_setup.hpp"
 
 namespace fireswarm::run::internal {
@@ -65,21 +66,11 @@ TEST(FireHotCentre, IgnoresCellsCooledBelowWhatACameraSees) {
   EXPECT_FALSE(FireHotCentre(grid, ignition).has_value());
 }
 
+// The small area with one fire and `random_fires` (a YAML mapping).
 Scenario SmallArea(const std::string& random_fires) {
-  const std::string text = R"(
-name: small_area
-seed: 3
-duration_s: 60
-area:
-  polygon: [[7.0, 45.0], [7.010146, 45.0], [7.010146, 45.0045], [7.0, 45.0045]]
-fleet:
-  count: 2
-  launch: {lat: 44.9995, lon: 7.005}
-fires:
-  - {lat: 45.00230, lon: 7.00480, start_s: 0}
-random_fires: )" + random_fires +
-                           "\n";
-  return ParseScenario(text, "small_area.yaml", ".");
+  return testing::SmallArea(
+      "fires:\n  - {lat: 45.00230, lon: 7.00480, start_s: 0}\nrandom_fires: " + random_fires +
+      "\n");
 }
 
 TEST(ExpandFires, RandomFiresKeepTheirSpacingFromEveryFire) {

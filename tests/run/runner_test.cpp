@@ -14,6 +14,7 @@
 #include "fireswarm/common/local_frame.hpp"
 #include "fireswarm/run/report_json.hpp"
 #include "fireswarm/run/scenario.hpp"
+#include "small_area.hpp"
 
 namespace fireswarm::run {
 namespace {
@@ -183,20 +184,7 @@ TEST(RunScenario, FailedExpectationIsReported) {
   EXPECT_FALSE(report.expect[1].detail.empty());
 }
 
-// The small area with `extra` YAML appended (no fires, no expectations).
-Scenario SmallArea(const std::string& extra) {
-  const std::string text = R"(
-name: small_area
-seed: 3
-duration_s: 60
-area:
-  polygon: [[7.0, 45.0], [7.010146, 45.0], [7.010146, 45.0045], [7.0, 45.0045]]
-fleet:
-  count: 2
-  launch: {lat: 44.9995, lon: 7.005}
-)" + extra;
-  return ParseScenario(text, "small_area.yaml", ".");
-}
+using testing::SmallArea;
 
 std::vector<std::pair<double, double>> TruePositions(const Report& report) {
   std::vector<std::pair<double, double>> out;

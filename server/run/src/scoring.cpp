@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <unordered_set>
 
 namespace fireswarm::run::internal {
 namespace {
@@ -52,14 +53,13 @@ std::optional<sim2d::Vec2> FireHotCentre(const sim2d::FireGrid& grid,
   const std::optional<sim2d::CellIndex> start = grid.CellAt(ignition_m);
   if (!start || !grid.IgnitionTimeS(*start)) return std::nullopt;
   const double ambient_c = grid.config().ambient_c;
-  std::vector<bool> seen(static_cast<std::size_t>(grid.cols()) *
-                         static_cast<std::size_t>(grid.rows()));
+  // Only the fire's own cells are visited: no bitmap of the whole grid.
   const auto flat = [&](sim2d::CellIndex cell) {
     return static_cast<std::size_t>(cell.row) * static_cast<std::size_t>(grid.cols()) +
            static_cast<std::size_t>(cell.col);
   };
+  std::unordered_set<std::size_t> seen{flat(*start)};
   std::vector<sim2d::CellIndex> open{*start};
-  seen[flat(*start)] = true;
   sim2d::Vec2 sum = sim2d::Vec2::Zero();
   int hot = 0;
   while (!open.empty()) {
@@ -73,10 +73,9 @@ std::optional<sim2d::Vec2> FireHotCentre(const sim2d::FireGrid& grid,
       for (int dc = -1; dc <= 1; ++dc) {
         const sim2d::CellIndex next{cell.col + dc, cell.row + dr};
         if (next.col < 0 || next.row < 0 || next.col >= grid.cols() || next.row >= grid.rows() ||
-            seen[flat(next)] || !grid.IgnitionTimeS(next)) {
+            !grid.IgnitionTimeS(next) || !seen.insert(flat(next)).second) {
           continue;
         }
-        seen[flat(next)] = true;
         open.push_back(next);
       }
     }

@@ -1,0 +1,25 @@
+// The runner tests' small scenario: 800 m x 500 m of forest and two drones,
+// with `extra` YAML appended (no fires, no expectations of its own).
+#pragma once
+
+#include <string>
+
+#include "fireswarm/run/scenario.hpp"
+
+namespace fireswarm::run::testing {
+
+inline Scenario SmallArea(const std::string& extra) {
+  const std::string text = R"(
+name: small_area
+seed: 3
+duration_s: 60
+area:
+  polygon: [[7.0, 45.0], [7.010146, 45.0], [7.010146, 45.0045], [7.0, 45.0045]]
+fleet:
+  count: 2
+  launch: {lat: 44.9995, lon: 7.005}
+)" + extra;
+  return ParseScenario(text, "small_area.yaml", ".");
+}
+
+}  // namespace fireswarm::run::testing
