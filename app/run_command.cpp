@@ -1,5 +1,5 @@
 // `fireswarm run SCENARIO.yaml`: flies a scenario headless in lockstep on simulated
-// time (the runner in server/run), writes the report (JSON), and optionally a JUnit
+// time (the runner in run/), writes the report (JSON), and optionally a JUnit
 // file, an SVG map, an LCM log and live LCM traffic. Exit 0 when every `expect`
 // holds, 1 when one fails, 2 on bad input (the scenario error names the file, key
 // and problem). A progress line goes to stderr only when stderr is a terminal.
