@@ -12,40 +12,6 @@ namespace {
 namespace radio = fireswarm::radio;
 using Json = nlohmann::ordered_json;
 
-// Names an enum value by its index in `names` (offset by `first`), "unknown" when
-// out of range (possible only for messages built in memory, never decoded ones).
-template <typename Enum, std::size_t N>
-std::string_view EnumName(Enum value, int first, const std::array<std::string_view, N>& names) {
-  const int index = static_cast<int>(value) - first;
-  return index >= 0 && index < static_cast<int>(N) ? names[static_cast<std::size_t>(index)]
-                                                   : "unknown";
-}
-
-std::string_view Name(radio::ReplyKind v) {
-  return EnumName(v, 1, std::array<std::string_view, 3>{"telemetry", "fire_report", "ack"});
-}
-std::string_view Name(radio::FlightMode v) {
-  return EnumName(v, 0,
-                  std::array<std::string_view, 8>{"idle", "takeoff", "search", "investigate",
-                                                  "return_to_launch", "land", "landed", "hold"});
-}
-std::string_view Name(radio::MissionAckStatus v) {
-  return EnumName(v, 0, std::array<std::string_view, 3>{"accepted", "complete", "rejected"});
-}
-std::string_view Name(radio::CommandType v) {
-  return EnumName(
-      v, 1,
-      std::array<std::string_view, 7>{"start_mission", "hold", "resume", "return_to_launch", "land",
-                                      "investigate", "abort"});
-}
-std::string_view Name(radio::CommandResult v) {
-  return EnumName(v, 0, std::array<std::string_view, 3>{"accepted", "rejected", "unsupported"});
-}
-std::string_view Name(radio::ParamStatus v) {
-  return EnumName(
-      v, 0, std::array<std::string_view, 4>{"ok", "unknown_param", "read_only", "out_of_range"});
-}
-
 Json TelemetryFlagNames(std::uint8_t flags) {
   namespace bits = radio::telemetry_flags;
   Json names = Json::array();
@@ -73,7 +39,7 @@ Json Header(const radio::MessageHeader& header) {
 
 Json Fields(const radio::Poll& m) {
   Json j = Header(m.header);
-  j["reply"] = Name(m.reply);
+  j["reply"] = radio::ToString(m.reply);
   return j;
 }
 
@@ -84,7 +50,7 @@ Json Fields(const radio::SlotSchedule& m) {
   j["slots"] = Json::array();
   for (const radio::Slot& slot : m.active()) {
     j["slots"].push_back({{"receiver", slot.receiver},
-                          {"reply", Name(slot.reply)},
+                          {"reply", radio::ToString(slot.reply)},
                           {"slot_bytes", slot.slot_bytes}});
   }
   return j;
@@ -104,7 +70,7 @@ Json Fields(const radio::Telemetry& m) {
   j["heading_deg"] = m.heading_deg;
   j["battery_v"] = m.battery_v;
   j["battery_percent"] = m.battery_percent;
-  j["mode"] = Name(m.mode);
+  j["mode"] = radio::ToString(m.mode);
   j["flags"] = m.flags;
   j["flag_names"] = TelemetryFlagNames(m.flags);
   j["pending_reports"] = m.pending_reports;
@@ -160,13 +126,13 @@ Json Fields(const radio::MissionAck& m) {
   Json j = Header(m.header);
   j["mission_id"] = m.mission_id;
   j["chunk_index"] = m.chunk_index;
-  j["status"] = Name(m.status);
+  j["status"] = radio::ToString(m.status);
   return j;
 }
 
 Json Fields(const radio::Command& m) {
   Json j = Header(m.header);
-  j["type"] = Name(m.type);
+  j["type"] = radio::ToString(m.type);
   j["mission_id"] = m.mission_id;
   j["lat_deg"] = m.lat_deg;
   j["lon_deg"] = m.lon_deg;
@@ -179,8 +145,8 @@ Json Fields(const radio::Command& m) {
 Json Fields(const radio::CommandAck& m) {
   Json j = Header(m.header);
   j["acked_sequence"] = m.acked_sequence;
-  j["type"] = Name(m.type);
-  j["result"] = Name(m.result);
+  j["type"] = radio::ToString(m.type);
+  j["result"] = radio::ToString(m.result);
   return j;
 }
 
@@ -201,14 +167,14 @@ Json Fields(const radio::ParamValue& m) {
   Json j = Header(m.header);
   j["param_id"] = m.param_id;
   j["value"] = FloatForJson(m.value);
-  j["status"] = Name(m.status);
+  j["status"] = radio::ToString(m.status);
   return j;
 }
 
 Json Fields(const radio::Heartbeat& m) {
   Json j = Header(m.header);
   j["time_ms"] = m.time_ms;
-  j["mode"] = Name(m.mode);
+  j["mode"] = radio::ToString(m.mode);
   j["flags"] = m.flags;
   return j;
 }

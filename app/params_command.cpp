@@ -13,6 +13,7 @@
 #include "cli.hpp"
 #include "commands.hpp"
 #include "fireswarm/agents/params.hpp"
+#include "fireswarm/radio/params.hpp"
 
 namespace fireswarm::app {
 namespace {
@@ -51,7 +52,7 @@ int RunParams(const std::vector<std::string>& args) {
     std::printf("%5s  %-28s %10s %10s %10s %s  %s\n", "id", "name", store ? "value" : "default",
                 "min", "max", "unit", "description");
   }
-  for (const agents::ParamSpec& spec : agents::ParamTable()) {
+  for (const radio::ParamSpec& spec : radio::ParamTable()) {
     const auto id = static_cast<std::uint16_t>(spec.id);
     const float value = store ? store->Get(spec.id) : spec.default_value;
     if (json) {

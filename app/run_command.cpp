@@ -28,6 +28,7 @@
 #include "cli.hpp"
 #include "commands.hpp"
 #include "fireswarm/common/atomic_file.hpp"
+#include "fireswarm/common/time.hpp"
 #include "fireswarm/run/junit.hpp"
 #include "fireswarm/run/report_json.hpp"
 #include "fireswarm/run/runner.hpp"
@@ -45,7 +46,6 @@ constexpr const char* kName = "run";
 /// LCM utime of simulated time 0, us: the Unix epoch, so a run's utimes are its
 /// simulated microseconds (1970-01-01 to a tool that shows them as dates).
 constexpr std::int64_t kUtimeAtSimZero = 0;
-constexpr double kMicrosPerSecond = 1e6;
 constexpr int kBarWidth = 30;
 /// The progress line is redrawn at most this often (a small run goes at ~1000x).
 constexpr std::chrono::milliseconds kRedrawPeriod{100};
@@ -133,7 +133,7 @@ class RunLcmOutput {
   /// the log cannot be written.
   void Publish(double t_s, const server::Server& server) {
     const std::int64_t utime =
-        kUtimeAtSimZero + static_cast<std::int64_t>(std::llround(t_s * kMicrosPerSecond));
+        kUtimeAtSimZero + static_cast<std::int64_t>(std::llround(t_s * common::kMicrosPerSecond));
     bridge_->Publish(server, t_s, utime, kUtimeAtSimZero);
   }
 

@@ -13,6 +13,7 @@
 #include "cli.hpp"
 #include "commands.hpp"
 #include "fireswarm/common/camera_model.hpp"
+#include "fireswarm/common/time.hpp"
 #include "fireswarm/planner/area_io.hpp"
 #include "fireswarm/planner/plan.hpp"
 #include "fireswarm/server/journal.hpp"
@@ -28,7 +29,7 @@ namespace {
 
 namespace po = boost::program_options;
 namespace fs = std::filesystem;
-using radio::Nanos;
+using common::Nanos;
 
 constexpr const char* kName = "serve";
 constexpr int kMaxId = 254;
@@ -151,7 +152,7 @@ void PrintResumed(const server::Journal& journal, std::size_t records, const ser
   line["dropped_lines"] = journal.recovery().dropped_lines;
   line["state"] = server::ToString(server.state());
   line["tracks"] = server.fusion().tracks().size();
-  line["t_s"] = radio::ToSeconds(clock_offset);
+  line["t_s"] = common::ToSeconds(clock_offset);
   std::cout << line.dump() << std::endl;
 }
 
@@ -159,7 +160,7 @@ void PrintResumed(const server::Journal& journal, std::size_t records, const ser
 // mission (planned now), the start.
 void CompleteSetup(const Flags& f, const planner::SearchArea& area, Nanos now,
                    server::Server& server) {
-  const double now_s = radio::ToSeconds(now);
+  const double now_s = common::ToSeconds(now);
   for (const int id : ReceiverIds(f)) {
     if (!server.registry().Contains(static_cast<std::uint8_t>(id))) server.AddVehicle(id, now_s);
   }
@@ -239,7 +240,7 @@ int RunServe(const std::vector<std::string>& args) {
   const bool resumed = !entries.empty();
   Nanos clock_offset{0};
   for (const server::JournalEntry& entry : entries) {
-    clock_offset = std::max(clock_offset, radio::FromSeconds(entry.t_s));
+    clock_offset = std::max(clock_offset, common::FromSeconds(entry.t_s));
   }
   server::Server server = resumed ? server::Server::Restore(config, area.frame, entries)
                                   : server::Server(config, area.frame);

@@ -16,6 +16,7 @@
 #include "fireswarm/agents/params.hpp"
 #include "fireswarm/common/camera_model.hpp"
 #include "fireswarm/common/local_frame.hpp"
+#include "fireswarm/radio/params.hpp"
 #include "fireswarm/server/vehicle_registry.hpp"
 #include "link_flags.hpp"
 #include "sim_link_flags.hpp"
@@ -183,7 +184,7 @@ int RunSim(const std::vector<std::string>& args) {
   if (f.link_lost_timeout_s) {
     for (const auto& vehicle : fleet.vehicles()) {
       radio::ParamWrite write;
-      write.param_id = static_cast<std::uint16_t>(agents::ParamId::kLinkLostTimeoutS);
+      write.param_id = static_cast<std::uint16_t>(radio::ParamId::kLinkLostTimeoutS);
       write.value = static_cast<float>(*f.link_lost_timeout_s);
       vehicle->OnParamWrite(write);
     }

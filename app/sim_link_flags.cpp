@@ -4,6 +4,7 @@
 
 #include "cli.hpp"
 #include "fireswarm/common/camera_model.hpp"
+#include "fireswarm/common/time.hpp"
 
 namespace fireswarm::app {
 
@@ -32,9 +33,9 @@ void RunFleet(SimulatedFleet& fleet, const OpenedLink& link, const LinkFlags& li
   if (link_flags.print_bound_port) {
     std::cout << "bound_port=" << link.udp->local_port() << std::endl;
   }
-  fleet.Run(
-      *link.link, f.speed,
-      f.duration_s ? std::optional<radio::Nanos>(radio::FromSeconds(*f.duration_s)) : std::nullopt);
+  fleet.Run(*link.link, f.speed,
+            f.duration_s ? std::optional<common::Nanos>(common::FromSeconds(*f.duration_s))
+                         : std::nullopt);
 }
 
 }  // namespace fireswarm::app

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <utility>
 
+#include "fireswarm/common/time.hpp"
 #include "fireswarm/radio/messages.hpp"
 #include "message_json.hpp"
 #include "stop_signals.hpp"
@@ -10,7 +11,7 @@
 namespace fireswarm::app {
 namespace {
 
-using radio::Nanos;
+using common::Nanos;
 
 // A loop more than this late (wall clock) moves its pacing origin instead of
 // stepping back to back to catch up: the simulation then runs slower than asked.
@@ -22,7 +23,7 @@ SimulatedFleet::SimulatedFleet(const sim2d::SimulationConfig& world,
                                const std::vector<agents::VehicleConfig>& vehicles)
     : simulation_(world),
       fleet_(simulation_),
-      step_(radio::FromSeconds(simulation_.world().step_s())),
+      step_(common::FromSeconds(simulation_.world().step_s())),
       start_(Clock::now()) {
   for (const agents::VehicleConfig& config : vehicles) {
     vehicles_.push_back(std::make_unique<agents::Vehicle>(config));
@@ -68,7 +69,7 @@ void SimulatedFleet::Run(radio::IoLink& link, double speed, std::optional<Nanos>
     }
     link.WaitReadable(std::max(Nanos{0}, next - Wall()));
   }
-  wall_seconds_ = radio::ToSeconds(Wall());
+  wall_seconds_ = common::ToSeconds(Wall());
 }
 
 // Hands what arrived to every vehicle that is not deaf and queues their replies.

@@ -40,6 +40,7 @@
 #include <vector>
 
 #include "fireswarm/agents/vehicle.hpp"
+#include "fireswarm/common/time.hpp"
 #include "fireswarm/hil/sim_bridge.hpp"
 #include "fireswarm/radio/link.hpp"
 #include "fireswarm/sim2d/simulation.hpp"
@@ -60,7 +61,7 @@ class SimulatedFleet {
   /// reaches `end`, simulated time running `speed` times faster than the wall
   /// clock (slower when the machine cannot keep up: see `lag_s` in Summary()).
   /// Precondition: speed >= 1. Throws as the link's Receive and Transmit.
-  void Run(radio::IoLink& link, double speed, std::optional<radio::Nanos> end);
+  void Run(radio::IoLink& link, double speed, std::optional<common::Nanos> end);
 
   /// The vehicles, in the order of their configurations (e.g. to set a parameter
   /// before Run()).
@@ -78,32 +79,32 @@ class SimulatedFleet {
   struct Radio {
     agents::Vehicle* vehicle = nullptr;
     std::vector<std::uint8_t> received;
-    radio::Nanos deaf_until{0};  // vehicle clock
+    common::Nanos deaf_until{0};  // vehicle clock
   };
   // A reply held until it may leave: written `turnaround` before its start.
   struct HeldBurst {
-    radio::Nanos send_at{0};  // wall clock
-    radio::Nanos start{0};    // wall clock
+    common::Nanos send_at{0};  // wall clock
+    common::Nanos start{0};    // wall clock
     std::vector<std::uint8_t> bytes;
   };
   using Clock = std::chrono::steady_clock;
 
-  radio::Nanos Wall() const { return Clock::now() - start_; }
-  radio::Nanos DueAt(radio::Nanos sim) const;
-  radio::Nanos VehicleNow(radio::Nanos wall) const;
-  void Listen(radio::IoLink& link, radio::Nanos wall);
-  void Hold(radio::Burst burst, radio::Nanos wall, radio::Nanos now);
-  void SendDue(radio::IoLink& link, radio::Nanos wall);
+  common::Nanos Wall() const { return Clock::now() - start_; }
+  common::Nanos DueAt(common::Nanos sim) const;
+  common::Nanos VehicleNow(common::Nanos wall) const;
+  void Listen(radio::IoLink& link, common::Nanos wall);
+  void Hold(radio::Burst burst, common::Nanos wall, common::Nanos now);
+  void SendDue(radio::IoLink& link, common::Nanos wall);
 
   sim2d::Simulation simulation_;
   hil::LockstepFleet fleet_;
   std::vector<std::unique_ptr<agents::Vehicle>> vehicles_;
   std::vector<Radio> radios_;
   radio::LinkTiming timing_;
-  radio::Nanos step_;
+  common::Nanos step_;
   double speed_ = 1.0;
   Clock::time_point start_;
-  radio::Nanos origin_{0};      // wall time at which simulated time 0 was due
+  common::Nanos origin_{0};     // wall time at which simulated time 0 was due
   std::deque<HeldBurst> held_;  // in start order
   double wall_seconds_ = 0.0;
 };

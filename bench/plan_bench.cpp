@@ -32,6 +32,7 @@
 #include <vector>
 
 #include "fireswarm/common/camera_model.hpp"
+#include "fireswarm/common/units.hpp"
 #include "fireswarm/planner/area_io.hpp"
 #include "fireswarm/planner/plan.hpp"
 
@@ -43,7 +44,6 @@ constexpr double kMinCoverage = 0.995;
 constexpr double kMaxRatioConvex = 1.05;
 constexpr double kMaxRatioHoles = 1.15;
 constexpr double kMaxPlanningSeconds = 2.0;
-constexpr double kSquareMetresPerKm2 = 1e6;
 
 // Which makespan / lower bound target the issue sets for an area.
 enum class RatioTarget { kConvex, kHoles, kNone };
@@ -137,7 +137,7 @@ Row Measure(const Scenario& s, const fp::SearchArea& area, const std::string& pl
   if (planner == "lawnmower" && s.target == RatioTarget::kConvex) row.target = "1.05";
   if (planner == "lawnmower" && s.target == RatioTarget::kHoles) row.target = "1.15";
   for (const fp::Polygon& p : area.area) row.area_km2 += boost::geometry::area(p);
-  row.area_km2 /= kSquareMetresPerKm2;
+  row.area_km2 /= fireswarm::common::kSquareMetresPerKm2;
   const auto kind = planner == "ompl" ? fp::PlannerKind::kOmpl : fp::PlannerKind::kLawnmower;
   try {
     row.plan = fp::PlanSearch(area, Fleet(area, drones), kind, 1);

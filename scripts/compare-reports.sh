@@ -17,7 +17,9 @@ if [ -z "$mode" ] || [ -z "$dir" ] || { [ "$mode" != record ] && [ "$mode" != ch
 fi
 fireswarm=${FIRESWARM:-build/bin/fireswarm}
 diff_tool=build/bin/report_diff
-for tool in "$fireswarm" "$diff_tool"; do
+tools=("$fireswarm")
+[ "$mode" = check ] && tools+=("$diff_tool")
+for tool in "${tools[@]}"; do
   [ -x "$tool" ] || { echo "compare-reports: $tool is missing: build first (scripts/build.sh)" >&2; exit 2; }
 done
 mkdir -p "$dir"

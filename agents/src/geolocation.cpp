@@ -8,11 +8,10 @@
 #include <stdexcept>
 #include <string_view>
 
+#include "fireswarm/common/angles.hpp"
+
 namespace fireswarm::agents {
 namespace {
-
-constexpr double kRadPerDeg = std::numbers::pi / 180.0;
-constexpr double kDegPerRad = 180.0 / std::numbers::pi;
 
 // Rays closer to the horizon than this (down component of the unnormalised ray)
 // do not meet the ground at a meaningful distance.
@@ -38,9 +37,10 @@ constexpr std::array<double, kInputCount> kSteps = {1e-4, 1e-7, 1e-7, 1e-7, 1e-5
 std::optional<Eigen::Vector2d> NorthEast(const ObserverPose& pose, const InputVector& x) {
   const CameraGeometry& camera = pose.camera;
   if (!(x[kAltitude] > 0.0)) return std::nullopt;
-  const double fx_px = 0.5 * camera.width_px / std::tan(0.5 * camera.hfov_deg * kRadPerDeg);
-  const double fy_px = 0.5 * camera.height_px / std::tan(0.5 * camera.vfov_deg * kRadPerDeg);
-  const double p = camera.camera_pitch_deg * kRadPerDeg;
+  const double fx_px = 0.5 * camera.width_px / std::tan(0.5 * camera.hfov_deg * common::kRadPerDeg);
+  const double fy_px =
+      0.5 * camera.height_px / std::tan(0.5 * camera.vfov_deg * common::kRadPerDeg);
+  const double p = camera.camera_pitch_deg * common::kRadPerDeg;
   const Eigen::Vector3d axis(std::cos(p), 0.0, -std::sin(p));
   const Eigen::Vector3d right = Eigen::Vector3d::UnitY();
   const Eigen::Vector3d up(-std::sin(p), 0.0, -std::cos(p));
@@ -141,11 +141,11 @@ SeedGeolocationResult SeedFlatTerrainGeolocation(const SeedGeolocationInput& inp
   const double omega_t = input.gps_heading_deg + x_t;                                      // eq. 10
   const double phi_t = dy * input.vfov_deg / input.height_px;                              // eq. 11
   const double theta_t = 90.0 - (input.frame_pitch_deg + input.camera_mount_deg) + phi_t;  // eq. 12
-  const double d_t = input.height_m * std::tan(theta_t * kRadPerDeg);                      // eq. 13
+  const double d_t = input.height_m * std::tan(theta_t * common::kRadPerDeg);              // eq. 13
 
-  const double lat_gps = input.position.lat_deg * kRadPerDeg;
-  const double lon_gps = input.position.lon_deg * kRadPerDeg;
-  const double omega = omega_t * kRadPerDeg;
+  const double lat_gps = input.position.lat_deg * common::kRadPerDeg;
+  const double lon_gps = input.position.lon_deg * common::kRadPerDeg;
+  const double omega = omega_t * common::kRadPerDeg;
   const double delta = d_t / input.earth_radius_m;
   const double lat_t = std::asin(std::sin(lat_gps) * std::cos(delta) +
                                  std::cos(lat_gps) * std::sin(delta) * std::cos(omega));  // eq. 14
@@ -157,8 +157,8 @@ SeedGeolocationResult SeedFlatTerrainGeolocation(const SeedGeolocationInput& inp
   result.bearing_deg = omega_t;
   result.ground_distance_m = d_t;
   result.angle_from_vertical_deg = theta_t;
-  result.position.lat_deg = lat_t * kDegPerRad;
-  result.position.lon_deg = lon_t * kDegPerRad;
+  result.position.lat_deg = lat_t * common::kDegPerRad;
+  result.position.lon_deg = lon_t * common::kDegPerRad;
   return result;
 }
 
@@ -171,9 +171,9 @@ SeedGeolocationInput SeedInputFromImage(ImagePoint centroid, const ObserverPose&
   input.height_px = pose.camera.height_px;
   input.hfov_deg = pose.camera.hfov_deg;
   input.vfov_deg = pose.camera.vfov_deg;
-  input.gps_heading_deg = pose.heading_rad * kDegPerRad;
-  input.frame_pitch_deg = -pose.pitch_rad * kDegPerRad;    // phi_f: nose down positive
-  input.camera_mount_deg = -pose.camera.camera_pitch_deg;  // phi_c: depression
+  input.gps_heading_deg = pose.heading_rad * common::kDegPerRad;
+  input.frame_pitch_deg = -pose.pitch_rad * common::kDegPerRad;  // phi_f: nose down positive
+  input.camera_mount_deg = -pose.camera.camera_pitch_deg;        // phi_c: depression
   input.height_m = pose.altitude_m;
   input.position = pose.position;
   return input;

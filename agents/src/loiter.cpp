@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "fireswarm/common/units.hpp"
+
 namespace fireswarm::agents {
 
 namespace {
@@ -32,7 +34,7 @@ void Loiter::Start(common::EastNorth center, double radius_m, double altitude_m)
   speed_pid_.Reset();
 }
 
-NavigationSetpoint Loiter::Step(const NavigationInput& input, double dt_us) {
+NavigationSetpoint Loiter::Step(const NavigationInput& input, common::Micros dt) {
   const double to_center_east = center_.east_m - input.position_local.east_m;
   const double to_center_north = center_.north_m - input.position_local.north_m;
   const double range = std::hypot(to_center_east, to_center_north);
@@ -55,15 +57,15 @@ NavigationSetpoint Loiter::Step(const NavigationInput& input, double dt_us) {
       input.velocity_east_mps * tangent_east + input.velocity_north_mps * tangent_north;
   // Too far out (range > radius) -> tilt inward. The centripetal acceleration
   // v^2 / r is fed forward so the PID only trims.
-  const double centripetal_tilt =
-      config_.speed_mps * config_.speed_mps / std::max(radius_m_, kMinRangeM) / 9.80665;
+  const double centripetal_tilt = config_.speed_mps * config_.speed_mps /
+                                  std::max(radius_m_, kMinRangeM) / common::kGravityMps2;
   // Far from the circle the integrator would only wind up on the approach.
   if (std::abs(radius_error_m_) > kIntegrateWithinM) radial_pid_.Reset();
   const double range_rate =
       -(input.velocity_east_mps * inward_east + input.velocity_north_mps * inward_north);
-  const double tilt_inward = centripetal_tilt - radial_pid_.Update(range, radius_m_, dt_us) +
+  const double tilt_inward = centripetal_tilt - radial_pid_.Update(range, radius_m_, dt) +
                              DampingTilt(config_.radial, range_rate);
-  const double tilt_along = speed_pid_.Update(tangential_speed, config_.speed_mps, dt_us);
+  const double tilt_along = speed_pid_.Update(tangential_speed, config_.speed_mps, dt);
   const BodyTilt body = TiltToBody(tilt_inward * inward_east + tilt_along * tangent_east,
                                    tilt_inward * inward_north + tilt_along * tangent_north,
                                    input.heading_rad, config_.max_tilt_rad);

@@ -4,21 +4,17 @@
 #include <cmath>
 #include <numbers>
 
+#include "fireswarm/common/angles.hpp"
+
 namespace fireswarm::agents {
 
 namespace {
 
-constexpr double kDegToRad = std::numbers::pi / 180.0;
-constexpr double kRadToDeg = 180.0 / std::numbers::pi;
 // seed 7.2: "the navigation loop uses the mean radius of earth that is 6378137 meters"
 // (it is the WGS84 equatorial radius; kept as the seed has it).
 constexpr double kSeedEarthRadiusM = 6378137.0;
 // A segment shorter than this has no direction of its own.
 constexpr double kMinSegmentM = 0.01;
-
-double WrapPi(double angle_rad) {
-  return std::remainder(angle_rad, 2.0 * std::numbers::pi);
-}
 
 struct Vec {
   double east = 0.0;
@@ -36,22 +32,22 @@ double Norm(Vec v) {
 double SeedBearingDeg(common::LatLon from, common::LatLon to) {
   // seed eq. 1, as its C++ listing: y = sin(dL) cos(lat2);
   // x = cos(lat1) sin(lat2) - sin(lat1) cos(lat2) cos(dL); bearing = atan2(y, x).
-  const double lat1 = from.lat_deg * kDegToRad;
-  const double lat2 = to.lat_deg * kDegToRad;
-  const double delta_lon = (to.lon_deg - from.lon_deg) * kDegToRad;
+  const double lat1 = from.lat_deg * common::kRadPerDeg;
+  const double lat2 = to.lat_deg * common::kRadPerDeg;
+  const double delta_lon = (to.lon_deg - from.lon_deg) * common::kRadPerDeg;
   const double y = std::sin(delta_lon) * std::cos(lat2);
   const double x =
       std::cos(lat1) * std::sin(lat2) - std::sin(lat1) * std::cos(lat2) * std::cos(delta_lon);
   // The listing's `(theta * 180 / PI + 360) % 360`.
-  return std::fmod(std::atan2(y, x) * kRadToDeg + 360.0, 360.0);
+  return std::fmod(std::atan2(y, x) * common::kDegPerRad + 360.0, 360.0);
 }
 
 double SeedDistanceM(common::LatLon from, common::LatLon to) {
   // seed eq. 2-4 (haversine).
-  const double lat1 = from.lat_deg * kDegToRad;
-  const double lat2 = to.lat_deg * kDegToRad;
-  const double delta_lat = (to.lat_deg - from.lat_deg) * kDegToRad;
-  const double delta_lon = (to.lon_deg - from.lon_deg) * kDegToRad;
+  const double lat1 = from.lat_deg * common::kRadPerDeg;
+  const double lat2 = to.lat_deg * common::kRadPerDeg;
+  const double delta_lat = (to.lat_deg - from.lat_deg) * common::kRadPerDeg;
+  const double delta_lon = (to.lon_deg - from.lon_deg) * common::kRadPerDeg;
   const double a =
       std::sin(delta_lat / 2) * std::sin(delta_lat / 2) +
       std::cos(lat1) * std::cos(lat2) * std::sin(delta_lon / 2) * std::sin(delta_lon / 2);
@@ -175,30 +171,30 @@ void Navigator::ResetWindEstimate() {
   wind_tilt_east_ = wind_tilt_north_ = 0.0;
 }
 
-NavigationSetpoint Navigator::Step(const NavigationInput& input, double dt_us) {
+NavigationSetpoint Navigator::Step(const NavigationInput& input, common::Micros dt) {
   if (route_.empty()) {
     NavigationSetpoint hold;
     hold.heading_rad = input.heading_rad;
     return hold;
   }
   if (!finished_ && config_.mode == NavigationMode::kSeed) return StepSeed(input);
-  return StepTrack(input, dt_us);
+  return StepTrack(input, dt);
 }
 
 NavigationSetpoint Navigator::StepSeed(const NavigationInput& input) {
   if (SeedDistanceM(input.position, route_[index_].position) < config_.acceptance_radius_m) {
     Advance();
-    if (finished_) return StepTrack(input, 0.0);
+    if (finished_) return StepTrack(input, common::Micros{0.0});
   }
   const RoutePoint& target = route_[index_];
   NavigationSetpoint setpoint;
-  setpoint.heading_rad = SeedBearingDeg(input.position, target.position) * kDegToRad;
+  setpoint.heading_rad = SeedBearingDeg(input.position, target.position) * common::kRadPerDeg;
   setpoint.altitude_m = target.altitude_m;
   // seed 7.2: roll is always zero; pitch 15 deg forward once the heading error is
   // under 5 deg, zero otherwise (so it does not overshoot while it turns).
-  const double heading_error = std::abs(WrapPi(setpoint.heading_rad - input.heading_rad));
-  const bool aligned = heading_error < config_.heading_tolerance_deg * kDegToRad;
-  setpoint.pitch_rad = aligned ? -config_.seed_pitch_deg * kDegToRad : 0.0;
+  const double heading_error = std::abs(common::WrapPi(setpoint.heading_rad - input.heading_rad));
+  const bool aligned = heading_error < config_.heading_tolerance_deg * common::kRadPerDeg;
+  setpoint.pitch_rad = aligned ? -config_.seed_pitch_deg * common::kRadPerDeg : 0.0;
   cross_track_m_ = 0.0;
   return setpoint;
 }
@@ -211,9 +207,9 @@ double Navigator::TargetSpeed(double distance_to_go_m) const {
     const Vec in = Minus(route_local_[index_], segment_start_);
     const Vec out = Minus(route_local_[index_ + 1], route_local_[index_]);
     const double turn_rad =
-        std::abs(WrapPi(std::atan2(out.east, out.north) - std::atan2(in.east, in.north)));
+        std::abs(common::WrapPi(std::atan2(out.east, out.north) - std::atan2(in.east, in.north)));
     const bool sharp = Norm(in) < kMinSegmentM || Norm(out) < kMinSegmentM ||
-                       turn_rad > config_.sharp_turn_deg * kDegToRad;
+                       turn_rad > config_.sharp_turn_deg * common::kRadPerDeg;
     end_speed = sharp ? config_.corner_speed_mps : cruise;
   }
   const double braking_speed = std::sqrt(
@@ -221,7 +217,7 @@ double Navigator::TargetSpeed(double distance_to_go_m) const {
   return std::min(cruise, braking_speed);
 }
 
-NavigationSetpoint Navigator::StepTrack(const NavigationInput& input, double dt_us) {
+NavigationSetpoint Navigator::StepTrack(const NavigationInput& input, common::Micros dt) {
   const common::EastNorth here = input.position_local;
   const common::EastNorth target = route_local_[index_];
   Vec along_unit;
@@ -240,13 +236,13 @@ NavigationSetpoint Navigator::StepTrack(const NavigationInput& input, double dt_
     }
     if (length < kMinSegmentM || distance_to_go <= 0.0) {
       Advance();
-      return StepTrack(input, dt_us);
+      return StepTrack(input, dt);
     }
   }
 
   NavigationSetpoint setpoint;
   setpoint.altitude_m = route_[index_].altitude_m;
-  const double dt_s = std::max(dt_us, 0.0) * 1e-6;
+  const double dt_s = std::max(dt.count(), 0.0) * 1e-6;
   double tilt_east = 0.0;
   double tilt_north = 0.0;
   if (finished_) {
@@ -263,10 +259,10 @@ NavigationSetpoint Navigator::StepTrack(const NavigationInput& input, double dt_
     const double speed_along =
         input.velocity_east_mps * along_unit.east + input.velocity_north_mps * along_unit.north;
     const double target_speed = TargetSpeed(distance_to_go);
-    const double tilt_along = speed_pid_.Update(speed_along, target_speed, dt_us);
+    const double tilt_along = speed_pid_.Update(speed_along, target_speed, dt);
     const double cross_track_rate =
         input.velocity_east_mps * along_unit.north - input.velocity_north_mps * along_unit.east;
-    const double tilt_right = cross_track_pid_.Update(cross_track, 0.0, dt_us) -
+    const double tilt_right = cross_track_pid_.Update(cross_track, 0.0, dt) -
                               DampingTilt(config_.cross_track, cross_track_rate);
     // Right of the track is (along.north, -along.east); the error toward the
     // track is -cross_track along it.

@@ -3,10 +3,11 @@
 #include <algorithm>
 #include <cassert>
 
+#include "fireswarm/common/time.hpp"
+
 namespace fireswarm::agents {
 
 namespace {
-constexpr double kMicrosPerSecond = 1e6;
 // seed: `if (dt < 1) { dt = 1; }` -- a zero or negative interval (timer roll-over
 // handled badly, or two calls in one tick) must not divide by zero.
 constexpr double kMinDtUs = 1.0;
@@ -44,8 +45,8 @@ double Pid::Clamp(double value, const PidLimit& limit) {
   return std::clamp(value, limit.min, limit.max);
 }
 
-double Pid::Update(double feedback, double desire, double dt_us) {
-  const double dt_s = std::max(dt_us, kMinDtUs) / kMicrosPerSecond;
+double Pid::Update(double feedback, double desire, common::Micros dt) {
+  const double dt_s = std::max(dt.count(), kMinDtUs) / common::kMicrosPerSecond;
   error_ = desire - feedback;
   i_state_ += error_ * dt_s;
   p_value_ = p_gain_ * error_;

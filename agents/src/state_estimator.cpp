@@ -1,6 +1,6 @@
 #include "fireswarm/agents/state_estimator.hpp"
 
-#include "fireswarm/radio/time.hpp"
+#include "fireswarm/common/time.hpp"
 
 namespace fireswarm::agents {
 
@@ -16,7 +16,7 @@ constexpr double kGpsBlend = 0.1;
 }  // namespace
 
 void StateEstimator::Update(Nanos now, const SensorInputs& inputs) {
-  const double dt_s = last_update_ ? radio::ToSeconds(now - *last_update_) : 0.0;
+  const double dt_s = last_update_ ? common::ToSeconds(now - *last_update_) : 0.0;
   last_update_ = now;
 
   // Carry the position forward with the velocity, then pull it toward a new fix.
@@ -41,7 +41,7 @@ void StateEstimator::Update(Nanos now, const SensorInputs& inputs) {
     last_fix_ = now;
   }
   if (estimate_.has_position) estimate_.position = frame_->ToGeodetic(estimate_.position_local);
-  estimate_.gps_age_s = last_fix_ ? radio::ToSeconds(now - *last_fix_) : 0.0;
+  estimate_.gps_age_s = last_fix_ ? common::ToSeconds(now - *last_fix_) : 0.0;
 
   if (inputs.baro) {
     const double raw = inputs.baro->altitude_m;
@@ -51,7 +51,7 @@ void StateEstimator::Update(Nanos now, const SensorInputs& inputs) {
     }
     const double altitude = raw - baro_zero_m_;
     if (baro_raw_m_ && baro_time_ && now > *baro_time_) {
-      const double baro_dt_s = radio::ToSeconds(now - *baro_time_);
+      const double baro_dt_s = common::ToSeconds(now - *baro_time_);
       const double rate = (raw - *baro_raw_m_) / baro_dt_s;
       const double blend = baro_dt_s / (kClimbRateTimeConstantS + baro_dt_s);
       estimate_.climb_rate_mps += blend * (rate - estimate_.climb_rate_mps);

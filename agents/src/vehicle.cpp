@@ -8,11 +8,13 @@
 #include <stdexcept>
 #include <string>
 
+#include "fireswarm/common/angles.hpp"
+#include "fireswarm/common/time.hpp"
+
 namespace fireswarm::agents {
 
 namespace {
 
-constexpr double kDegToRad = std::numbers::pi / 180.0;
 // Below this the camera sees the launch pad, not the forest.
 constexpr double kMinDetectionAltitudeM = 5.0;
 
@@ -72,11 +74,11 @@ void Vehicle::ApplyParams() {
   cascade.pitch = GainsOf(params_, ParamId::kPitchKp);
   cascade.heading = GainsOf(params_, ParamId::kHeadingKp);
   cascade.altitude = GainsOf(params_, ParamId::kAltitudeKp);
-  cascade.roll_trim_rad = Param(ParamId::kRollTrimDeg) * kDegToRad;
-  cascade.pitch_trim_rad = Param(ParamId::kPitchTrimDeg) * kDegToRad;
-  cascade.max_tilt_rad = Param(ParamId::kMaxTiltDeg) * kDegToRad;
+  cascade.roll_trim_rad = Param(ParamId::kRollTrimDeg) * common::kRadPerDeg;
+  cascade.pitch_trim_rad = Param(ParamId::kPitchTrimDeg) * common::kRadPerDeg;
+  cascade.max_tilt_rad = Param(ParamId::kMaxTiltDeg) * common::kRadPerDeg;
   cascade.max_climb_mps = Param(ParamId::kMaxClimbMps);
-  cascade.max_yaw_rate_radps = Param(ParamId::kMaxYawRateDps) * kDegToRad;
+  cascade.max_yaw_rate_radps = Param(ParamId::kMaxYawRateDps) * common::kRadPerDeg;
   cascade_.Configure(cascade);
 
   NavigationConfig& nav = navigation_config_;
@@ -139,7 +141,7 @@ void Vehicle::ProcessFrame(Nanos now, const CameraFrame& frame) {
   pose.heading_rad = state.attitude.heading_rad;
   pose.camera = GeometryOf(config_.camera, Param(ParamId::kCameraPitchDeg));
   ++stats_.frames_processed;
-  for (const FireDetection& detection : detector_.Process(radio::ToSeconds(now), frame, pose)) {
+  for (const FireDetection& detection : detector_.Process(common::ToSeconds(now), frame, pose)) {
     radio::FireReport report;
     report.time_ms = static_cast<std::uint32_t>(std::lround(detection.time_s * 1000.0));
     report.lat_deg = detection.position.lat_deg;
@@ -169,9 +171,9 @@ void Vehicle::UpdateTelemetry(Nanos now) {
   telemetry.velocity_north_mps = state.velocity_north_mps;
   telemetry.velocity_east_mps = state.velocity_east_mps;
   telemetry.climb_rate_mps = state.climb_rate_mps;
-  telemetry.roll_deg = state.attitude.roll_rad / kDegToRad;
-  telemetry.pitch_deg = state.attitude.pitch_rad / kDegToRad;
-  telemetry.heading_deg = std::fmod(state.attitude.heading_rad / kDegToRad + 360.0, 360.0);
+  telemetry.roll_deg = state.attitude.roll_rad / common::kRadPerDeg;
+  telemetry.pitch_deg = state.attitude.pitch_rad / common::kRadPerDeg;
+  telemetry.heading_deg = std::fmod(state.attitude.heading_rad / common::kRadPerDeg + 360.0, 360.0);
   telemetry.battery_v = state.battery_v;
   telemetry.battery_percent =
       static_cast<std::uint8_t>(std::lround(std::clamp(state.battery_fraction, 0.0, 1.0) * 100.0));

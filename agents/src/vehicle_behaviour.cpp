@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "fireswarm/agents/vehicle.hpp"
+#include "fireswarm/common/time.hpp"
 
 namespace fireswarm::agents {
 
@@ -24,7 +25,6 @@ constexpr double kSlowDescentBelowM = 3.0;
 // kLandedAfterS while descending. Works whatever the barometer's drift.
 constexpr double kLandProgressM = 0.2;
 constexpr double kLandedAfterS = 3.0;
-constexpr double kNanosPerMicro = 1e3;
 // An investigation farther than this outside its circle flies there first on the
 // navigator at cruise speed, and circles from there on (the loiter's radial
 // control spirals in slowly from afar: a far investigator never arrived), m.
@@ -249,7 +249,7 @@ void Vehicle::CheckSafety(Nanos now) {
       EnterMode(FlightMode::kReturnToLaunch, now);
     }
   }
-  const Nanos timeout = radio::FromSeconds(Param(ParamId::kLinkLostTimeoutS));
+  const Nanos timeout = common::FromSeconds(Param(ParamId::kLinkLostTimeoutS));
   const Nanos heard = last_heard_.value_or(mode_since_);
   if (!link_lost_ && now - heard > timeout) {
     link_lost_ = true;
@@ -260,13 +260,13 @@ void Vehicle::CheckSafety(Nanos now) {
   }
 }
 
-CascadeSetpoint Vehicle::Behave(Nanos now, std::optional<double> nav_dt_us) {
+CascadeSetpoint Vehicle::Behave(Nanos now, std::optional<common::Micros> nav_dt) {
   const Estimate& state = estimator_.estimate();
-  if (nav_dt_us) {
+  if (nav_dt) {
     const NavigationInput input = NavInput();
     const bool circling = mode_ == FlightMode::kInvestigate && !investigate_approach_;
     navigation_setpoint_ =
-        circling ? loiter_.Step(input, *nav_dt_us) : navigator_->Step(input, *nav_dt_us);
+        circling ? loiter_.Step(input, *nav_dt) : navigator_->Step(input, *nav_dt);
   }
   CascadeSetpoint setpoint;
   setpoint.roll_rad = navigation_setpoint_.roll_rad;
@@ -320,7 +320,7 @@ CascadeSetpoint Vehicle::Behave(Nanos now, std::optional<double> nav_dt_us) {
       if (state.altitude_m < land_low_altitude_m_ - kLandProgressM) {
         land_low_altitude_m_ = state.altitude_m;
         land_progress_at_ = now;
-      } else if (radio::ToSeconds(now - land_progress_at_) > kLandedAfterS) {
+      } else if (common::ToSeconds(now - land_progress_at_) > kLandedAfterS) {
         EnterMode(FlightMode::kLanded, now);
       }
       break;
@@ -341,15 +341,13 @@ ActuatorOutputs Vehicle::Step(Nanos now, const SensorInputs& inputs) {
   if (inputs.frame != nullptr) ProcessFrame(now, *inputs.frame);
   CheckSafety(now);
 
-  std::optional<double> nav_dt_us;
-  const Nanos nav_period = radio::FromSeconds(1.0 / config_.navigation_hz);
+  std::optional<common::Micros> nav_dt;
+  const Nanos nav_period = common::FromSeconds(1.0 / config_.navigation_hz);
   if (!last_navigation_ || now - *last_navigation_ >= nav_period) {
-    nav_dt_us = last_navigation_
-                    ? static_cast<double>((now - *last_navigation_).count()) / kNanosPerMicro
-                    : static_cast<double>(nav_period.count()) / kNanosPerMicro;
+    nav_dt = common::ToMicros(last_navigation_ ? now - *last_navigation_ : nav_period);
     last_navigation_ = now;
   }
-  const Nanos telemetry_period = radio::FromSeconds(1.0 / config_.telemetry_hz);
+  const Nanos telemetry_period = common::FromSeconds(1.0 / config_.telemetry_hz);
   if (!last_telemetry_ || now - *last_telemetry_ >= telemetry_period) {
     UpdateTelemetry(now);
     last_telemetry_ = now;
@@ -357,7 +355,7 @@ ActuatorOutputs Vehicle::Step(Nanos now, const SensorInputs& inputs) {
   outputs_ = ActuatorOutputs{};
   if (!Airborne() || !navigator_) return outputs_;
 
-  const CascadeSetpoint setpoint = Behave(now, nav_dt_us);
+  const CascadeSetpoint setpoint = Behave(now, nav_dt);
   if (!Airborne()) return outputs_;  // just landed
   const Estimate& state = estimator_.estimate();
   CascadeInput input;

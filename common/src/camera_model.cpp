@@ -7,6 +7,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "fireswarm/common/angles.hpp"
+
 namespace fireswarm::common {
 namespace {
 
@@ -23,10 +25,6 @@ double VfovFromHfovDeg(double hfov_deg, int width_px, int height_px) {
 // saturates at about 140 C. The seed camera (thesis Table 4.1 and section 7.3):
 // 96x64 pixels, 75 x 60 deg; its rate and noise are not stated, so they follow
 // the Lepton-class sensors the thesis compares it with.
-double Radians(double degrees) {
-  return degrees * std::numbers::pi / 180.0;
-}
-
 const std::array<CameraModel, 3> kModels = {{
     {"seed", 96, 64, 75.0, 60.0, 9.0, 0.1, 150.0},
     {"amg8833", 8, 8, 60.0, 60.0, 10.0, 0.25, 80.0},
@@ -70,9 +68,9 @@ double FootprintWidthM(const CameraModel& camera, double altitude_m, double pitc
         "camera_pitch_deg must be in [-90, 0) (down from the horizon), got " +
         std::to_string(pitch_deg));
   }
-  const double depression_rad = Radians(-pitch_deg);
-  const double tan_half_h = std::tan(Radians(camera.hfov_deg) / 2.0);
-  const double tan_half_v = std::tan(Radians(camera.vfov_deg) / 2.0);
+  const double depression_rad = DegToRad(-pitch_deg);
+  const double tan_half_h = std::tan(DegToRad(camera.hfov_deg) / 2.0);
+  const double tan_half_v = std::tan(DegToRad(camera.vfov_deg) / 2.0);
   // A ray through image row b (b = tan of its angle above the axis) meets the
   // ground at range h / (sin d - b cos d) along the axis; the near edge is b = -tan(vfov/2).
   const double near_edge_denominator =

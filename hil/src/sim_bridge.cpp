@@ -3,6 +3,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "fireswarm/common/time.hpp"
+
 namespace fireswarm::hil {
 
 agents::SensorInputs ToVehicleInputs(const sim2d::SensorSample& sample) {
@@ -63,7 +65,7 @@ void LockstepFleet::Add(agents::Vehicle& vehicle) {
 
 void LockstepFleet::Step() {
   simulation_.Step();
-  const radio::Nanos time = now();
+  const common::Nanos time = now();
   for (agents::Vehicle* vehicle : vehicles_) {
     const int id = vehicle->id();
     agents::SensorInputs inputs = ToVehicleInputs(simulation_.world().Sensors(id));

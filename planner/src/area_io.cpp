@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "fireswarm/common/units.hpp"
 #include "geojson_read.hpp"
 
 namespace fireswarm::planner {
@@ -26,8 +27,6 @@ namespace {
 namespace bg = boost::geometry;
 using geojson::GeoFeature;
 using geojson::GeoPolygon;
-
-constexpr double kSquareMetresPerKm2 = 1e6;
 
 // Boost.Geometry's validity failures in the words of someone drawing a forest.
 std::string DescribeFailure(bg::validity_failure_type failure) {
@@ -108,7 +107,7 @@ MultiPolygon Project(const LabelledFeature& f, const common::LocalFrame& frame) 
     bg::correct(polygon);
     bg::validity_failure_type failure = bg::no_failure;
     if (!bg::is_valid(polygon, failure)) fail(name + " " + DescribeFailure(failure));
-    const double area_km2 = bg::area(polygon) / kSquareMetresPerKm2;
+    const double area_km2 = bg::area(polygon) / common::kSquareMetresPerKm2;
     if (area_km2 > kMaxSearchAreaKm2) {
       fail(name + " covers " + std::to_string(std::lround(area_km2)) +
            " km2, more than the sane maximum of " + std::to_string(std::lround(kMaxSearchAreaKm2)) +
@@ -157,7 +156,7 @@ SearchArea ParseSearchArea(const GeoJsonText& area, const std::optional<GeoJsonT
   for (const LabelledFeature& f : area_features) {
     whole_area = Union(whole_area, Project(f, result.frame));
   }
-  const double whole_km2 = bg::area(whole_area) / kSquareMetresPerKm2;
+  const double whole_km2 = bg::area(whole_area) / common::kSquareMetresPerKm2;
   if (whole_km2 > kMaxSearchAreaKm2) {
     throw std::invalid_argument(area.source + ": the features together cover " +
                                 std::to_string(std::lround(whole_km2)) +

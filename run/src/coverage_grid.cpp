@@ -4,6 +4,7 @@
 #include <limits>
 #include <numbers>
 
+#include "fireswarm/common/angles.hpp"
 #include "scoring.hpp"
 
 namespace fireswarm::run::internal {
@@ -16,7 +17,6 @@ constexpr double kMaxCoverageCells = 2'000'000.0;
 constexpr double kFarEdgeCapM = 1'000.0;
 /// Below this a flying vehicle is taking off or landing: its camera is not searching.
 constexpr double kMinCoverageAltitudeM = 2.0;
-constexpr double kDegToRad = std::numbers::pi / 180.0;
 constexpr std::uint8_t kOutside = 0;
 constexpr std::uint8_t kUnseen = 1;
 constexpr std::uint8_t kSeen = 2;
@@ -52,8 +52,8 @@ void CoverageGrid::Mark(const sim2d::VehicleTruth& truth, const common::CameraMo
     return;
   }
   const double h = truth.altitude_m;
-  const double depression = -camera_pitch_deg * kDegToRad;
-  const double half_v = camera.vfov_deg * kDegToRad / 2.0;
+  const double depression = -camera_pitch_deg * common::kRadPerDeg;
+  const double half_v = camera.vfov_deg * common::kRadPerDeg / 2.0;
   // Ground distance ahead of the vehicle of the image's near and far edges
   // (negative: behind). An edge at or above the horizon is capped.
   const double near_angle = depression + half_v;

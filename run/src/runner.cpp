@@ -173,7 +173,7 @@ class Lockstep {
     for (const FlyingVehicle& v : vehicles_) {
       // A vehicle the simulator lost or crashed is that, whatever its software says.
       const sim2d::FlightPhase phase = world().Truth(v.vehicle->id()).phase;
-      std::string state = internal::FlightModeName(v.vehicle->mode());
+      std::string state(radio::ToString(v.vehicle->mode()));
       if (phase == sim2d::FlightPhase::kLost) state = "lost";
       if (phase == sim2d::FlightPhase::kCrashed) state = "crashed";
       out.modes[v.vehicle->id()] = state;

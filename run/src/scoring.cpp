@@ -91,28 +91,6 @@ double Percentile(std::vector<double> values, double p) {
   return values[std::min(index, values.size() - 1)];
 }
 
-std::string FlightModeName(radio::FlightMode mode) {
-  switch (mode) {
-    case radio::FlightMode::kIdle:
-      return "idle";
-    case radio::FlightMode::kTakeoff:
-      return "takeoff";
-    case radio::FlightMode::kSearch:
-      return "search";
-    case radio::FlightMode::kInvestigate:
-      return "investigate";
-    case radio::FlightMode::kReturnToLaunch:
-      return "return_to_launch";
-    case radio::FlightMode::kLand:
-      return "land";
-    case radio::FlightMode::kLanded:
-      return "landed";
-    case radio::FlightMode::kHold:
-      return "hold";
-  }
-  return "unknown";
-}
-
 Scorer::Scorer(const Scenario& scenario, std::vector<FireSpec> fires)
     : scenario_(scenario), fires_(std::move(fires)), coverage_(scenario.area) {
   for (const int id : scenario.fleet.ReceiverIds()) traces_[id] = VehicleTrace{};

@@ -150,7 +150,4 @@ std::vector<ExpectOutcome> EvaluateExpectations(const Expectations& expect, cons
 /// Nearest-rank percentile `p` in [0, 1] of `values` (not empty).
 double Percentile(std::vector<double> values, double p);
 
-/// "idle", "takeoff", "search", "investigate", "return_to_launch", "land", "landed", "hold".
-std::string FlightModeName(radio::FlightMode mode);
-
 }  // namespace fireswarm::run::internal

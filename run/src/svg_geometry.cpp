@@ -8,13 +8,13 @@
 #include <numbers>
 #include <utility>
 
+#include "fireswarm/common/angles.hpp"
 #include "fireswarm/run/scenario.hpp"
 #include "xml_text.hpp"
 
 namespace fireswarm::run::internal {
 namespace {
 
-constexpr double kDegPerRad = 180.0 / std::numbers::pi;
 constexpr double kHalfTurnDeg = 180.0;
 constexpr double kQuarterTurnDeg = 90.0;
 constexpr double kMetresPerKm = 1'000.0;
@@ -167,7 +167,7 @@ std::optional<EllipsePx> CovarianceEllipse(const std::array<double, 3>& covarian
   // An eigenvector's sign is arbitrary; fold the angle into (-90, 90].
   // A circle has no major axis: any eigenvector will do, so none is written.
   const bool circle = variances(1) - variances(0) <= rounding;
-  double rotate_deg = circle ? 0.0 : std::atan2(major.y(), major.x()) * kDegPerRad;
+  double rotate_deg = circle ? 0.0 : std::atan2(major.y(), major.x()) * common::kDegPerRad;
   if (rotate_deg <= -kQuarterTurnDeg) rotate_deg += kHalfTurnDeg;
   if (rotate_deg > kQuarterTurnDeg) rotate_deg -= kHalfTurnDeg;
   return EllipsePx{sigmas * std::sqrt(std::max(variances(1), 0.0)) * px_per_m,

@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "fire_spread.hpp"
+#include "fireswarm/common/angles.hpp"
 
 namespace fireswarm::sim2d {
 namespace {
@@ -53,7 +54,7 @@ std::vector<double> NeighbourTimes(const FireConfig& config, const FuelBehaviour
   const double head_mpm = HeadRosMpm(fuel, config.wind_speed_mps, config.wind_exponent);
   const double lb = LengthToBreadth(config.wind_speed_mps);
   // The head of the fire runs downwind: toward wind_from_deg + 180, clockwise from north.
-  const double to_rad = (config.wind_from_deg + 180.0) * std::numbers::pi / 180.0;
+  const double to_rad = common::DegToRad(config.wind_from_deg + 180.0);
   const Vec2 head_dir(std::sin(to_rad), std::cos(to_rad));
   std::vector<double> times;
   for (const Offset& o : kNeighbours) {

@@ -7,18 +7,16 @@
 #include <string>
 #include <utility>
 
+#include "fireswarm/common/angles.hpp"
+#include "fireswarm/common/units.hpp"
+
 namespace fireswarm::sim2d {
 namespace {
 
-constexpr double kGravityMps2 = 9.80665;
 constexpr double kMaxClimbCommandMps = 3.0;
 constexpr double kLandingDescentMps = 1.0;
 // Below this altitude the pilot only climbs (no tilt near the ground).
 constexpr double kTakeOffClearanceM = 3.0;
-
-double WrapPi(double angle_rad) {
-  return std::remainder(angle_rad, 2.0 * std::numbers::pi);
-}
 
 }  // namespace
 
@@ -78,13 +76,13 @@ void LanePilot::SteerToward(const Vec2& target_m, const VehicleTruth& truth,
   const Vec2 forward(std::sin(heading), std::cos(heading));
   const Vec2 right(std::cos(heading), -std::sin(heading));
   // Nose down (negative pitch) accelerates forward; right wing down accelerates right.
-  command.pitch_rad = std::clamp(-std::atan(accel.dot(forward) / kGravityMps2),
+  command.pitch_rad = std::clamp(-std::atan(accel.dot(forward) / common::kGravityMps2),
                                  -params_.max_tilt_rad, params_.max_tilt_rad);
-  command.roll_rad = std::clamp(std::atan(accel.dot(right) / kGravityMps2), -params_.max_tilt_rad,
-                                params_.max_tilt_rad);
+  command.roll_rad = std::clamp(std::atan(accel.dot(right) / common::kGravityMps2),
+                                -params_.max_tilt_rad, params_.max_tilt_rad);
   if (distance_m > params_.acceptance_radius_m) {
     const double desired_heading = std::atan2(to_target.x(), to_target.y());
-    command.yaw_rate_radps = params_.heading_gain_per_s * WrapPi(desired_heading - heading);
+    command.yaw_rate_radps = params_.heading_gain_per_s * common::WrapPi(desired_heading - heading);
   }
 }
 

@@ -3,12 +3,13 @@
 // contact. Pure functions over VehicleTruth; the world owns the Box2D body.
 #pragma once
 
+#include "fireswarm/common/units.hpp"
 #include "fireswarm/sim2d/multirotor.hpp"
 #include "fireswarm/sim2d/vehicle_state.hpp"
 
 namespace fireswarm::sim2d {
 
-inline constexpr double kGravityMps2 = 9.80665;
+using common::kGravityMps2;
 
 /// Step-size dependent constants, computed once per vehicle (no exp() per step).
 struct MultirotorCoefficients {

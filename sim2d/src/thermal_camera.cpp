@@ -8,10 +8,10 @@
 #include <stdexcept>
 #include <string_view>
 
+#include "fireswarm/common/angles.hpp"
+
 namespace fireswarm::sim2d {
 namespace {
-
-constexpr double kRadPerDeg = std::numbers::pi / 180.0;
 
 [[noreturn]] void Reject(std::string_view field, double value, std::string_view rule) {
   std::ostringstream message;
@@ -56,9 +56,9 @@ ThermalCamera::ThermalCamera(const common::CameraModel& model, CameraMount mount
   common::ValidateCamera(model_, mount_.camera_pitch_deg, "thermal camera");
   ValidateOptions(options_, model_.max_scene_c);
   if (std::isnan(options_.fixed_max_c)) options_.fixed_max_c = model_.max_scene_c;
-  fx_px_ = 0.5 * model_.width_px / std::tan(0.5 * model_.hfov_deg * kRadPerDeg);
-  fy_px_ = 0.5 * model_.height_px / std::tan(0.5 * model_.vfov_deg * kRadPerDeg);
-  const double p = mount_.camera_pitch_deg * kRadPerDeg;
+  fx_px_ = 0.5 * model_.width_px / std::tan(0.5 * model_.hfov_deg * common::kRadPerDeg);
+  fy_px_ = 0.5 * model_.height_px / std::tan(0.5 * model_.vfov_deg * common::kRadPerDeg);
+  const double p = mount_.camera_pitch_deg * common::kRadPerDeg;
   axis_body_ = Eigen::Vector3d(std::cos(p), 0.0, -std::sin(p));
   right_body_ = Eigen::Vector3d::UnitY();
   up_body_ = Eigen::Vector3d(-std::sin(p), 0.0, -std::cos(p));

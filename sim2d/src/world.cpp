@@ -6,6 +6,7 @@
 #include <string>
 
 #include "battery_model.hpp"
+#include "fireswarm/common/angles.hpp"
 #include "world_hash.hpp"
 #include "world_impl.hpp"
 
@@ -21,7 +22,7 @@ WorldConfig WithoutVehicles(const WorldConfig& config) {
 
 // Where the air moves to (local ENU) for a wind blowing from `from_deg`.
 Vec2 SteadyWind(const WindParams& wind) {
-  const double from_rad = wind.from_deg * std::numbers::pi / 180.0;
+  const double from_rad = common::DegToRad(wind.from_deg);
   return -wind.speed_mps * Vec2(std::sin(from_rad), std::cos(from_rad));
 }
 

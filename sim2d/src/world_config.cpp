@@ -7,6 +7,8 @@
 #include <string>
 #include <string_view>
 
+#include "fireswarm/common/units.hpp"
+
 namespace fireswarm::sim2d {
 namespace {
 
@@ -58,7 +60,7 @@ void CheckMultirotor(const FieldChecker& check, const MultirotorParams& p) {
   check.Positive("multirotor.radius_m", p.radius_m);
   check.Positive("multirotor.height_m", p.height_m);
   check.Positive("multirotor.max_thrust_n", p.max_thrust_n);
-  if (p.max_thrust_n <= p.mass_kg * 9.80665) {
+  if (p.max_thrust_n <= p.mass_kg * common::kGravityMps2) {
     check.Fail("multirotor.max_thrust_n", "must exceed the weight (mass_kg * g) to fly",
                p.max_thrust_n);
   }

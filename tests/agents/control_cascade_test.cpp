@@ -6,13 +6,14 @@
 #include <cstdint>
 #include <numbers>
 
+#include "fireswarm/common/angles.hpp"
+
 namespace fireswarm::agents {
 namespace {
 
 using std::chrono::microseconds;
 using std::chrono::milliseconds;
 
-constexpr double kDegToRad = std::numbers::pi / 180.0;
 constexpr milliseconds kStep{2};
 constexpr int kStepsPerSecond = 500;
 constexpr double kTolerance = 1e-9;
@@ -118,20 +119,20 @@ TEST(ControlCascade, HeadingErrorWraps) {
   {
     ControlCascade cascade(config);
     CascadeInput input;
-    input.heading_rad = 10.0 * kDegToRad;
+    input.heading_rad = 10.0 * common::kRadPerDeg;
     CascadeSetpoint setpoint;
-    setpoint.heading_rad = 350.0 * kDegToRad;
+    setpoint.heading_rad = 350.0 * common::kRadPerDeg;
     // 20 deg to the left, not 340 to the right.
-    EXPECT_NEAR(cascade.Step(Nanos{0}, input, setpoint).yaw_rate_radps, -20.0 * kDegToRad,
+    EXPECT_NEAR(cascade.Step(Nanos{0}, input, setpoint).yaw_rate_radps, -20.0 * common::kRadPerDeg,
                 kTolerance);
   }
   {
     ControlCascade cascade(config);
     CascadeInput input;
-    input.heading_rad = 350.0 * kDegToRad;
+    input.heading_rad = 350.0 * common::kRadPerDeg;
     CascadeSetpoint setpoint;
-    setpoint.heading_rad = 10.0 * kDegToRad;
-    EXPECT_NEAR(cascade.Step(Nanos{0}, input, setpoint).yaw_rate_radps, 20.0 * kDegToRad,
+    setpoint.heading_rad = 10.0 * common::kRadPerDeg;
+    EXPECT_NEAR(cascade.Step(Nanos{0}, input, setpoint).yaw_rate_radps, 20.0 * common::kRadPerDeg,
                 kTolerance);
   }
 }

@@ -7,6 +7,7 @@
 #include <numbers>
 #include <vector>
 
+#include "fireswarm/common/angles.hpp"
 #include "fireswarm/common/local_frame.hpp"
 
 namespace fireswarm::agents {
@@ -16,10 +17,9 @@ using common::EastNorth;
 using common::LatLon;
 using common::LocalFrame;
 
-constexpr double kDegToRad = std::numbers::pi / 180.0;
 constexpr double kSeedEarthRadiusM = 6378137.0;
 constexpr LatLon kOrigin{45.2, 7.6};
-constexpr double kStepUs = 1e5;  // 10 Hz navigation
+constexpr common::Micros kStepUs{1e5};  // 10 Hz navigation
 constexpr double kTolerance = 1e-9;
 
 // Signed difference a - b of two angles in degrees, in [-180, 180].
@@ -57,7 +57,8 @@ TEST(SeedBearingDeg, StaysInZeroTo360) {
 }
 
 TEST(SeedDistanceM, OneDegreeOfLongitudeOnTheEquatorIsRTimesPiOver180) {
-  EXPECT_NEAR(SeedDistanceM({0.0, 10.0}, {0.0, 11.0}), kSeedEarthRadiusM * kDegToRad, 1e-6);
+  EXPECT_NEAR(SeedDistanceM({0.0, 10.0}, {0.0, 11.0}), kSeedEarthRadiusM * common::kRadPerDeg,
+              1e-6);
   EXPECT_EQ(SeedDistanceM(kOrigin, kOrigin), 0.0);
 }
 
@@ -151,7 +152,7 @@ TEST(TiltToBody, HeadingEast) {
 }
 
 TEST(TiltToBody, ArbitraryHeading) {
-  const double heading = 30.0 * kDegToRad;
+  const double heading = 30.0 * common::kRadPerDeg;
   const double forward_east = std::sin(heading);
   const double forward_north = std::cos(heading);
   // Along the heading: pure forward pitch.
@@ -301,7 +302,7 @@ TEST(Navigator, WithoutARouteHoldsTheHeadingAndFinishes) {
 // Seed mode.
 
 TEST(Navigator, SeedPitchesForwardOnlyWhenAligned) {
-  const double seed_pitch_rad = -15.0 * kDegToRad;
+  const double seed_pitch_rad = -15.0 * common::kRadPerDeg;
   struct Case {
     double heading_deg;
     double pitch_rad;
@@ -313,10 +314,10 @@ TEST(Navigator, SeedPitchesForwardOnlyWhenAligned) {
     Navigator navigator(SeedConfig(), Frame());
     navigator.SetRoute({Point(0.0, 100.0)}, 0, At(0.0, 0.0));
     const NavigationSetpoint setpoint =
-        navigator.Step(Input(0.0, 0.0, c.heading_deg * kDegToRad), kStepUs);
+        navigator.Step(Input(0.0, 0.0, c.heading_deg * common::kRadPerDeg), kStepUs);
     EXPECT_NEAR(setpoint.pitch_rad, c.pitch_rad, kTolerance) << c.heading_deg;
     EXPECT_EQ(setpoint.roll_rad, 0.0) << c.heading_deg;
-    EXPECT_NEAR(AngleDiffRad(setpoint.heading_rad, 0.0), 0.0, 0.2 * kDegToRad);
+    EXPECT_NEAR(AngleDiffRad(setpoint.heading_rad, 0.0), 0.0, 0.2 * common::kRadPerDeg);
     EXPECT_EQ(setpoint.altitude_m, kAltitudeM);
     EXPECT_EQ(navigator.cross_track_m(), 0.0);
   }
@@ -327,7 +328,8 @@ TEST(Navigator, SeedHeadsForTheWaypointAndNeverRolls) {
   navigator.SetRoute({Point(0.0, 100.0)}, 0, At(0.0, 0.0));
   // Well off to the west of the direct line: the seed turns toward the point.
   const NavigationSetpoint setpoint = navigator.Step(Input(-100.0, 0.0), kStepUs);
-  EXPECT_NEAR(AngleDiffRad(setpoint.heading_rad, 45.0 * kDegToRad), 0.0, 0.2 * kDegToRad);
+  EXPECT_NEAR(AngleDiffRad(setpoint.heading_rad, 45.0 * common::kRadPerDeg), 0.0,
+              0.2 * common::kRadPerDeg);
   EXPECT_EQ(setpoint.roll_rad, 0.0);
 }
 
@@ -344,7 +346,8 @@ TEST(Navigator, SeedAdvancesInsideTheAcceptanceRadius) {
   EXPECT_EQ(inside.waypoint_index(), 1u);
   EXPECT_FALSE(inside.finished());
   // Now toward (100, 100) from (0, 91).
-  EXPECT_NEAR(AngleDiffRad(setpoint.heading_rad, std::atan2(100.0, 9.0)), 0.0, 0.2 * kDegToRad);
+  EXPECT_NEAR(AngleDiffRad(setpoint.heading_rad, std::atan2(100.0, 9.0)), 0.0,
+              0.2 * common::kRadPerDeg);
 }
 
 TEST(Navigator, SeedFinishesAfterTheLastWaypointAndHoldsIt) {
@@ -453,8 +456,9 @@ TEST(Navigator, TrackSlowsBeforeASharpCorner) {
 
 TEST(Navigator, TrackDoesNotSlowWhereTheRouteGoesStraightOn) {
   const double straight = PitchFlyingNorth({0.0, 400.0}, 195.0);
-  const double gentle_turn = PitchFlyingNorth(
-      {200.0 * std::sin(10.0 * kDegToRad), 200.0 + 200.0 * std::cos(10.0 * kDegToRad)}, 195.0);
+  const double gentle_turn = PitchFlyingNorth({200.0 * std::sin(10.0 * common::kRadPerDeg),
+                                               200.0 + 200.0 * std::cos(10.0 * common::kRadPerDeg)},
+                                              195.0);
   EXPECT_NEAR(straight, 0.0, 1e-6);
   EXPECT_NEAR(gentle_turn, 0.0, 1e-6);
 }

@@ -6,7 +6,6 @@
 #include <fstream>
 #include <iterator>
 #include <limits>
-#include <set>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -32,36 +31,6 @@ std::string ReadFile(const fs::path& path) {
 
 void WriteFile(const fs::path& path, const std::string& text) {
   std::ofstream(path, std::ios::binary) << text;
-}
-
-// --- the table
-
-TEST(ParamTable, IdsAndNamesAreUniqueAndDefaultsInRange) {
-  std::set<std::uint16_t> ids;
-  std::set<std::string_view> names;
-  for (const ParamSpec& spec : ParamTable()) {
-    EXPECT_TRUE(ids.insert(Wire(spec.id)).second) << spec.name;
-    EXPECT_TRUE(names.insert(spec.name).second) << spec.name;
-    EXPECT_LE(spec.min, spec.default_value) << spec.name;
-    EXPECT_LE(spec.default_value, spec.max) << spec.name;
-    EXPECT_FALSE(spec.description.empty()) << spec.name;
-  }
-  EXPECT_EQ(ParamTable().size(), 36U + 5U + 6U + 1U + 4U + 1U);
-}
-
-TEST(ParamTable, FindsByIdAndByName) {
-  const ParamSpec* by_id = FindParam(std::uint16_t{54});
-  ASSERT_NE(by_id, nullptr);
-  EXPECT_EQ(by_id->id, ParamId::kCrossTrackILimit);
-  EXPECT_EQ(by_id->name, "pid.cross_track.i_limit");
-  const ParamSpec* by_name = FindParam(std::string_view("investigate.radius_m"));
-  ASSERT_NE(by_name, nullptr);
-  EXPECT_EQ(by_name->id, ParamId::kLoiterRadiusM);
-  EXPECT_EQ(&SpecOf(ParamId::kLoiterRadiusM), by_name);
-  EXPECT_EQ(FindParam(std::uint16_t{7}), nullptr);
-  EXPECT_EQ(FindParam(std::string_view("pid.roll")), nullptr);
-  EXPECT_TRUE(SpecOf(ParamId::kFirmwareVersion).read_only);
-  EXPECT_THROW(SpecOf(static_cast<ParamId>(999)), std::invalid_argument);
 }
 
 // --- values in memory

@@ -7,8 +7,8 @@
 namespace fireswarm::agents {
 namespace {
 
-constexpr double kOneSecondUs = 1e6;
-constexpr double kTenthSecondUs = 1e5;
+constexpr common::Micros kOneSecondUs{1e6};
+constexpr common::Micros kTenthSecondUs{1e5};
 constexpr double kTolerance = 1e-9;
 
 // --- gains and arithmetic
@@ -64,8 +64,8 @@ TEST(Pid, IntegratesOverDtInMicroseconds) {
   Pid pid;
   pid.SetGains(0.0, 1.0, 0.0);
   // 1 unit of error for 250 ms, then for 2.5 s.
-  EXPECT_NEAR(pid.Update(0.0, 1.0, 250'000.0), 0.25, kTolerance);
-  EXPECT_NEAR(pid.Update(0.0, 1.0, 2'500'000.0), 2.75, kTolerance);
+  EXPECT_NEAR(pid.Update(0.0, 1.0, common::Micros{250'000.0}), 0.25, kTolerance);
+  EXPECT_NEAR(pid.Update(0.0, 1.0, common::Micros{2'500'000.0}), 2.75, kTolerance);
 }
 
 // --- derivative on the measurement
@@ -122,31 +122,31 @@ TEST(Pid, ResetClearsTheIntegrator) {
 TEST(Pid, ZeroDtIsTakenAsOneMicrosecond) {
   Pid pid;
   pid.SetGains(0.0, 1.0, 0.0);
-  EXPECT_NEAR(pid.Update(0.0, 1.0, 0.0), 1e-6, 1e-15);
+  EXPECT_NEAR(pid.Update(0.0, 1.0, common::Micros{0.0}), 1e-6, 1e-15);
 
   Pid derivative;
   derivative.SetGains(0.0, 0.0, 1.0);
-  derivative.Update(0.0, 0.0, 0.0);
+  derivative.Update(0.0, 0.0, common::Micros{0.0});
   // Finite, not a division by zero: -1 / 1e-6.
-  EXPECT_NEAR(derivative.Update(1.0, 0.0, 0.0), -1e6, 1e-3);
+  EXPECT_NEAR(derivative.Update(1.0, 0.0, common::Micros{0.0}), -1e6, 1e-3);
 }
 
 TEST(Pid, NegativeDtIsTakenAsOneMicrosecond) {
   Pid pid;
   pid.SetGains(0.0, 1.0, 0.0);
   // A negative dt must not integrate backwards.
-  EXPECT_NEAR(pid.Update(0.0, 1.0, -5'000.0), 1e-6, 1e-15);
+  EXPECT_NEAR(pid.Update(0.0, 1.0, common::Micros{-5'000.0}), 1e-6, 1e-15);
 
   Pid derivative;
   derivative.SetGains(0.0, 0.0, 1.0);
-  derivative.Update(0.0, 0.0, -1.0);
-  EXPECT_NEAR(derivative.Update(1.0, 0.0, -1e9), -1e6, 1e-3);
+  derivative.Update(0.0, 0.0, common::Micros{-1.0});
+  EXPECT_NEAR(derivative.Update(1.0, 0.0, common::Micros{-1e9}), -1e6, 1e-3);
 }
 
 TEST(Pid, SubMicrosecondDtIsTakenAsOneMicrosecond) {
   Pid pid;
   pid.SetGains(0.0, 1.0, 0.0);
-  EXPECT_NEAR(pid.Update(0.0, 1.0, 0.25), 1e-6, 1e-15);
+  EXPECT_NEAR(pid.Update(0.0, 1.0, common::Micros{0.25}), 1e-6, 1e-15);
 }
 
 // --- limits
@@ -164,8 +164,8 @@ TEST(Pid, LimitsAreOffByDefault) {
 
   Pid derivative;
   derivative.SetGains(0.0, 0.0, 1.0);
-  derivative.Update(0.0, 0.0, 1.0);
-  EXPECT_NEAR(derivative.Update(-1e3, 0.0, 1.0), 1e9, 1e-3);
+  derivative.Update(0.0, 0.0, common::Micros{1.0});
+  EXPECT_NEAR(derivative.Update(-1e3, 0.0, common::Micros{1.0}), 1e9, 1e-3);
 }
 
 TEST(Pid, ITermClampedAtItsMaximum) {

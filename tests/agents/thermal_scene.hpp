@@ -10,6 +10,7 @@
 
 #include "fireswarm/agents/geolocation.hpp"
 #include "fireswarm/agents/vehicle_io.hpp"
+#include "fireswarm/common/angles.hpp"
 #include "fireswarm/common/local_frame.hpp"
 #include "fireswarm/hil/sim_bridge.hpp"
 #include "fireswarm/sim2d/fire_grid.hpp"
@@ -18,7 +19,7 @@
 
 namespace fireswarm::agents::testing {
 
-inline constexpr double kDeg = std::numbers::pi / 180.0;
+inline constexpr double kDeg = common::kRadPerDeg;
 
 /// No wind and no jitter: a fire spreads as a (grid) disc about its ignition.
 inline sim2d::FireConfig StillAirFire() {

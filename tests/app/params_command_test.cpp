@@ -7,6 +7,7 @@
 
 #include "app/run_fireswarm.hpp"
 #include "fireswarm/agents/params.hpp"
+#include "fireswarm/radio/params.hpp"
 
 namespace fireswarm::app {
 namespace {
@@ -24,9 +25,9 @@ TEST_F(ParamsCommand, ListsEveryParameterWithItsRange) {
   const RunResult run = RunFireswarm("params --json");
   ASSERT_EQ(run.exit_code, 0);
   const std::vector<nlohmann::json> lines = JsonLines(run);
-  ASSERT_EQ(lines.size(), agents::ParamTable().size());
+  ASSERT_EQ(lines.size(), radio::ParamTable().size());
   for (std::size_t i = 0; i < lines.size(); ++i) {
-    const agents::ParamSpec& spec = agents::ParamTable()[i];
+    const radio::ParamSpec& spec = radio::ParamTable()[i];
     EXPECT_EQ(lines[i]["id"], static_cast<int>(spec.id));
     EXPECT_EQ(lines[i]["name"], std::string(spec.name));
     EXPECT_FLOAT_EQ(lines[i]["default"].get<float>(), spec.default_value);
@@ -36,16 +37,15 @@ TEST_F(ParamsCommand, ListsEveryParameterWithItsRange) {
   }
   const RunResult table = RunFireswarm("params");
   EXPECT_EQ(table.exit_code, 0);
-  EXPECT_EQ(table.lines.size(), agents::ParamTable().size() + 1);  // a header line
+  EXPECT_EQ(table.lines.size(), radio::ParamTable().size() + 1);  // a header line
 }
 
 TEST_F(ParamsCommand, ShowsTheValuesOfAVehiclesFile) {
   const std::string file = PathOf("vehicle_3.json");
   {
     agents::ParamStore store(file, 3);
-    ASSERT_EQ(
-        store.Write(static_cast<std::uint16_t>(agents::ParamId::kCruiseSpeedMps), 5.5F).status,
-        radio::ParamStatus::kOk);
+    ASSERT_EQ(store.Write(static_cast<std::uint16_t>(radio::ParamId::kCruiseSpeedMps), 5.5F).status,
+              radio::ParamStatus::kOk);
   }
   const RunResult run = RunFireswarm("params --json --file '" + file + "'");
   ASSERT_EQ(run.exit_code, 0);
@@ -56,7 +56,7 @@ TEST_F(ParamsCommand, ShowsTheValuesOfAVehiclesFile) {
     EXPECT_FLOAT_EQ(line["value"].get<float>(), expected) << line["name"];
     ++checked;
   }
-  EXPECT_EQ(checked, static_cast<int>(agents::ParamTable().size()));
+  EXPECT_EQ(checked, static_cast<int>(radio::ParamTable().size()));
 }
 
 TEST_F(ParamsCommand, ABadFileExitsTwoNamingIt) {

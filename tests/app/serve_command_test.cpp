@@ -28,6 +28,7 @@
 
 #include "app/fireswarm_process.hpp"
 #include "app/run_fireswarm.hpp"
+#include "fireswarm/common/angles.hpp"
 #include "fireswarm/operator_command_t.hpp"
 
 namespace fireswarm::app {
@@ -40,7 +41,6 @@ using std::chrono::seconds;
 constexpr double kLaunchLat = 46.5;
 constexpr double kLaunchLon = 7.5;
 constexpr double kMetresPerDegLat = 111'320.0;
-constexpr double kPi = 3.14159265358979323846;
 // Faster than real time, slow enough for two cameras on a loaded 2-core machine.
 constexpr const char* kSimSpeed = "20";
 constexpr auto kMissionDeadline = seconds(90);
@@ -50,7 +50,8 @@ constexpr auto kExitDeadline = seconds(10);
 // A point `east_m`, `north_m` from the launch site, "lat,lon".
 std::string LatLonText(double east_m, double north_m) {
   const double lat = kLaunchLat + north_m / kMetresPerDegLat;
-  const double lon = kLaunchLon + east_m / (kMetresPerDegLat * std::cos(kLaunchLat * kPi / 180.0));
+  const double lon =
+      kLaunchLon + east_m / (kMetresPerDegLat * std::cos(common::DegToRad(kLaunchLat)));
   return std::to_string(lat) + "," + std::to_string(lon);
 }
 
@@ -60,7 +61,7 @@ std::string SmallArea() {
   for (const auto& [e, n] : std::vector<std::pair<double, double>>{
            {20, -100}, {320, -100}, {320, 100}, {20, 100}, {20, -100}}) {
     const double lat = kLaunchLat + n / kMetresPerDegLat;
-    const double lon = kLaunchLon + e / (kMetresPerDegLat * std::cos(kLaunchLat * kPi / 180.0));
+    const double lon = kLaunchLon + e / (kMetresPerDegLat * std::cos(common::DegToRad(kLaunchLat)));
     ring.push_back({lon, lat});
   }
   return Json{{"type", "Polygon"}, {"coordinates", {ring}}}.dump();

@@ -23,6 +23,7 @@
 #include "app/fireswarm_process.hpp"
 #include "app/run_fireswarm.hpp"
 #include "fireswarm/common/local_frame.hpp"
+#include "fireswarm/common/time.hpp"
 #include "fireswarm/radio/master_scheduler.hpp"
 #include "fireswarm/radio/mission_chunks.hpp"
 #include "fireswarm/radio/udp_link.hpp"
@@ -30,7 +31,7 @@
 namespace fireswarm::app {
 namespace {
 
-using radio::Nanos;
+using common::Nanos;
 using Clock = std::chrono::steady_clock;
 using Json = nlohmann::json;
 using std::chrono::seconds;

@@ -10,10 +10,12 @@
 #include <numbers>
 #include <string>
 
+#include "fireswarm/common/angles.hpp"
+
 namespace fireswarm::sim2d {
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
+constexpr double kDeg = common::kRadPerDeg;
 
 VehicleTruth Hovering(double altitude_m, double heading_deg = 0.0) {
   VehicleTruth v;

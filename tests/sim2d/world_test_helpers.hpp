@@ -6,11 +6,12 @@
 #include <functional>
 #include <vector>
 
+#include "fireswarm/common/units.hpp"
 #include "fireswarm/sim2d/world.hpp"
 
 namespace fireswarm::sim2d::testing {
 
-inline constexpr double kG = 9.80665;
+inline constexpr double kG = common::kGravityMps2;
 
 /// A vehicle with default parameters standing at `launch_m`.
 inline VehicleConfig VehicleAt(int id, Vec2 launch_m) {

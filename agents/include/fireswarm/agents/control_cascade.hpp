@@ -18,11 +18,11 @@
 #include "fireswarm/agents/pid.hpp"
 #include "fireswarm/agents/pid_gains.hpp"
 #include "fireswarm/agents/vehicle_io.hpp"
-#include "fireswarm/radio/time.hpp"
+#include "fireswarm/common/time.hpp"
 
 namespace fireswarm::agents {
 
-using radio::Nanos;
+using common::Nanos;
 
 struct CascadeConfig {
   PidGains roll;      ///< roll error (rad) -> roll command correction (rad)
@@ -83,8 +83,8 @@ class ControlCascade {
   struct LoopClock {
     bool started = false;
     std::uint32_t last_us = 0;
-    /// dt in microseconds when the loop is due at `now_us`, else nullopt.
-    std::optional<double> Due(std::uint32_t now_us, double rate_hz);
+    /// The time since the loop last ran when it is due at `now_us`, else nullopt.
+    std::optional<common::Micros> Due(std::uint32_t now_us, double rate_hz);
   };
 
   CascadeConfig config_;

@@ -9,6 +9,7 @@
 #include "fireswarm/agents/pid.hpp"
 #include "fireswarm/agents/pid_gains.hpp"
 #include "fireswarm/common/local_frame.hpp"
+#include "fireswarm/common/time.hpp"
 
 namespace fireswarm::agents {
 
@@ -25,7 +26,7 @@ class Loiter {
   void Configure(const LoiterConfig& config);
   /// Starts circling `center` (local frame) at `radius_m` and `altitude_m`.
   void Start(common::EastNorth center, double radius_m, double altitude_m);
-  NavigationSetpoint Step(const NavigationInput& input, double dt_us);
+  NavigationSetpoint Step(const NavigationInput& input, common::Micros dt);
 
   common::EastNorth center() const { return center_; }
   double radius_m() const { return radius_m_; }

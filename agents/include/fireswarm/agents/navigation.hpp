@@ -22,6 +22,7 @@
 #include "fireswarm/agents/pid.hpp"
 #include "fireswarm/agents/pid_gains.hpp"
 #include "fireswarm/common/local_frame.hpp"
+#include "fireswarm/common/time.hpp"
 
 namespace fireswarm::agents {
 
@@ -136,9 +137,9 @@ class Navigator {
   /// the vehicle is) to route[start_index]. An empty route finishes at once.
   void SetRoute(std::vector<RoutePoint> route, std::size_t start_index, common::LatLon from);
 
-  /// One navigation step, `dt_us` after the previous one (seed PID timing).
+  /// One navigation step, `dt` after the previous one (seed PID timing).
   /// After the last waypoint it holds the last waypoint's position.
-  NavigationSetpoint Step(const NavigationInput& input, double dt_us);
+  NavigationSetpoint Step(const NavigationInput& input, common::Micros dt);
 
   /// Forgets the wind integrator (before a take-off).
   void ResetWindEstimate();
@@ -159,7 +160,7 @@ class Navigator {
 
  private:
   NavigationSetpoint StepSeed(const NavigationInput& input);
-  NavigationSetpoint StepTrack(const NavigationInput& input, double dt_us);
+  NavigationSetpoint StepTrack(const NavigationInput& input, common::Micros dt);
   void Advance();
   void IntegrateWind(double delta_east, double delta_north);
   double TargetSpeed(double distance_to_go_m) const;

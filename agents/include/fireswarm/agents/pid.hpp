@@ -19,6 +19,8 @@
 
 #include <cstdint>
 
+#include "fireswarm/common/time.hpp"
+
 namespace fireswarm::agents {
 
 enum class AntiWindup : std::uint8_t {
@@ -53,10 +55,10 @@ class Pid {
   /// Turns the three clamps off again (the state after construction).
   void ClearLimits() { i_limit_ = d_limit_ = output_limit_ = PidLimit{}; }
 
-  /// seed updatePID(feedback, desire, dt): one controller step. `dt_us` is the time
-  /// since the previous call in microseconds; below 1 it is taken as 1 (the seed's
-  /// guard for a timer that rolled over or did not advance).
-  double Update(double feedback, double desire, double dt_us);
+  /// seed updatePID(feedback, desire, dt): one controller step. `dt` is the time
+  /// since the previous call (the seed counts it in microseconds); below 1 us it is
+  /// taken as 1 us (the seed's guard for a timer that rolled over or did not advance).
+  double Update(double feedback, double desire, common::Micros dt);
 
   double p_value() const { return p_value_; }
   double i_value() const { return i_value_; }

@@ -8,11 +8,11 @@
 
 #include "fireswarm/agents/vehicle_io.hpp"
 #include "fireswarm/common/local_frame.hpp"
-#include "fireswarm/radio/time.hpp"
+#include "fireswarm/common/time.hpp"
 
 namespace fireswarm::agents {
 
-using radio::Nanos;
+using common::Nanos;
 
 struct Estimate {
   bool has_position = false;         ///< a GPS fix has arrived

@@ -26,6 +26,7 @@
 #include "fireswarm/agents/state_estimator.hpp"
 #include "fireswarm/agents/vehicle_io.hpp"
 #include "fireswarm/common/camera_model.hpp"
+#include "fireswarm/common/time.hpp"
 #include "fireswarm/radio/vehicle_endpoint.hpp"
 
 namespace fireswarm::agents {
@@ -102,7 +103,7 @@ class Vehicle final : public radio::VehicleRequestHandler {
   /// The take-off's target: the active mission's first waypoint altitude (its
   /// layer), or the take-off altitude parameter when it gives none, m.
   double ClimbOutAltitudeM() const;
-  CascadeSetpoint Behave(Nanos now, std::optional<double> nav_dt_us);
+  CascadeSetpoint Behave(Nanos now, std::optional<common::Micros> nav_dt);
   double Param(ParamId id) const { return static_cast<double>(params_.Get(id)); }
   void CheckSafety(Nanos now);
   void ProcessFrame(Nanos now, const CameraFrame& frame);

@@ -8,6 +8,7 @@
 
 #include "fireswarm/agents/vehicle.hpp"
 #include "fireswarm/agents/vehicle_io.hpp"
+#include "fireswarm/common/time.hpp"
 #include "fireswarm/sim2d/sensors.hpp"
 #include "fireswarm/sim2d/simulation.hpp"
 #include "fireswarm/sim2d/thermal_image.hpp"
@@ -40,7 +41,7 @@ class LockstepFleet {
   /// Steps until the simulated time reaches `time_s`.
   void RunUntil(double time_s);
 
-  radio::Nanos now() const { return radio::FromSeconds(simulation_.time_s()); }
+  common::Nanos now() const { return common::FromSeconds(simulation_.time_s()); }
   sim2d::Simulation& simulation() { return simulation_; }
 
  private:

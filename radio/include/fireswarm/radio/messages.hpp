@@ -54,6 +54,8 @@ enum class ReplyKind : std::uint8_t {
   kFireReport = 2,  ///< the oldest unacknowledged FireReport
   kAck = 3,         ///< the answer to the request addressed to it just before
 };
+/// "telemetry", "fire_report", "ack"; "unknown" outside the enum.
+std::string_view ToString(ReplyKind kind);
 
 struct Poll {
   MessageHeader header;
@@ -93,6 +95,10 @@ enum class FlightMode : std::uint8_t {
   kLanded = 6,
   kHold = 7,
 };
+/// The mode's name in reports, logs and JSON: "idle", "takeoff", "search",
+/// "investigate", "return_to_launch", "land", "landed", "hold"; "unknown" outside
+/// the enum (possible only for messages built in memory, never decoded ones).
+std::string_view ToString(FlightMode mode);
 
 /// Telemetry flag bits.
 namespace telemetry_flags {
@@ -180,6 +186,8 @@ enum class MissionAckStatus : std::uint8_t {
   kComplete = 1,  ///< every chunk of the mission is stored: it may fly
   kRejected = 2,  ///< chunk inconsistent with the mission being uploaded
 };
+/// "accepted", "complete", "rejected"; "unknown" outside the enum.
+std::string_view ToString(MissionAckStatus status);
 
 struct MissionAck {
   MessageHeader header;
@@ -198,6 +206,9 @@ enum class CommandType : std::uint8_t {
   kInvestigate = 6,  ///< loiter around (lat, lon) at radius, keeping the camera on it
   kAbort = 7,
 };
+/// "start_mission", "hold", "resume", "return_to_launch", "land", "investigate",
+/// "abort"; "unknown" outside the enum.
+std::string_view ToString(CommandType type);
 
 struct Command {
   MessageHeader header;
@@ -212,6 +223,8 @@ struct Command {
 };
 
 enum class CommandResult : std::uint8_t { kAccepted = 0, kRejected = 1, kUnsupported = 2 };
+/// "accepted", "rejected", "unsupported"; "unknown" outside the enum.
+std::string_view ToString(CommandResult result);
 
 struct CommandAck {
   MessageHeader header;
@@ -242,6 +255,8 @@ enum class ParamStatus : std::uint8_t {
   kReadOnly = 2,
   kOutOfRange = 3
 };
+/// "ok", "unknown_param", "read_only", "out_of_range"; "unknown" outside the enum.
+std::string_view ToString(ParamStatus status);
 
 struct ParamValue {
   MessageHeader header;

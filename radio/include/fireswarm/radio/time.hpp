@@ -1,15 +1,17 @@
-// Time on the radio link. Simulated links use exact integer nanoseconds since the
-// scenario start; real links (serial, UDP) use the steady clock since the process
-// start. Integer nanoseconds keep airtimes exact enough (1 ns) and deterministic.
+// Time on the radio link: airtimes of serial bytes. The time type itself is the
+// tree's one (common/time.hpp); the radio module names it unqualified.
 #pragma once
 
-#include <chrono>
 #include <cstddef>
 #include <cstdint>
 
+#include "fireswarm/common/time.hpp"
+
 namespace fireswarm::radio {
 
-using Nanos = std::chrono::nanoseconds;
+using common::FromSeconds;
+using common::Nanos;
+using common::ToSeconds;
 
 /// Bits a serial 8N1 byte occupies on the air: start bit, 8 data bits, stop bit.
 inline constexpr int kBitsPerByte8N1 = 10;
@@ -19,16 +21,6 @@ inline constexpr int kBitsPerByte8N1 = 10;
 constexpr Nanos Airtime(std::size_t bytes, int baud, int bits_per_byte = kBitsPerByte8N1) {
   const auto bits = static_cast<std::int64_t>(bytes) * bits_per_byte;
   return Nanos{(bits * 1'000'000'000 + baud - 1) / baud};
-}
-
-/// Converts seconds to nanoseconds, rounded to the nearest. Precondition: finite.
-inline Nanos FromSeconds(double seconds) {
-  return std::chrono::round<Nanos>(std::chrono::duration<double>(seconds));
-}
-
-/// Converts nanoseconds to seconds as a double, for figures and JSON.
-constexpr double ToSeconds(Nanos t) {
-  return static_cast<double>(t.count()) * 1e-9;
 }
 
 }  // namespace fireswarm::radio

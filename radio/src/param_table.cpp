@@ -8,9 +8,9 @@
 #include <stdexcept>
 #include <string>
 
-#include "fireswarm/agents/params.hpp"
+#include "fireswarm/radio/params.hpp"
 
-namespace fireswarm::agents {
+namespace fireswarm::radio {
 namespace {
 
 constexpr float kMaxGain = 10.0F;
@@ -187,4 +187,4 @@ const ParamSpec& SpecOf(ParamId id) {
   return *spec;
 }
 
-}  // namespace fireswarm::agents
+}  // namespace fireswarm::radio
