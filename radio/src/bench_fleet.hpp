@@ -8,7 +8,6 @@
 #include <vector>
 
 #include "fireswarm/radio/channel.hpp"
-#include "fireswarm/radio/link.hpp"
 #include "fireswarm/radio/master_scheduler.hpp"
 #include "fireswarm/radio/radio_bench.hpp"
 #include "fireswarm/radio/vehicle_endpoint.hpp"
@@ -28,10 +27,8 @@ class BenchHandler final : public VehicleRequestHandler {
 };
 
 struct BenchVehicle {
-  BenchVehicle(SharedChannel& channel, const VehicleEndpointConfig& config)
-      : link(channel, channel.AddRadio()), endpoint(config, handler) {}
+  explicit BenchVehicle(const VehicleEndpointConfig& config) : endpoint(config, handler) {}
   BenchHandler handler;  // before endpoint, which keeps a reference to it
-  SimLink link;
   VehicleEndpoint endpoint;
   Nanos next_report = Nanos::max();      // next generation time
   std::vector<Nanos> report_generated;   // by report_id
