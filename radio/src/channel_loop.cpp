@@ -17,8 +17,8 @@ RadioId ChannelLoop::AddVehicle(RadioStep step) {
 }
 
 Nanos ChannelLoop::NextEventTime() const {
-  return std::max(channel_.now(), std::min(master_.next_wakeup(),
-                                           channel_.NextEventTime().value_or(Nanos::max())));
+  return std::max(channel_.now(),
+                  std::min(master_.next_wakeup(), channel_.NextEventTime().value_or(Nanos::max())));
 }
 
 void ChannelLoop::StepAt(Nanos t) {

@@ -51,8 +51,7 @@ bool SilentAt(const std::vector<SilentWindow>& silent, double t_s) {
 // A vehicle on the radio; a silent one is cut off both ways (it hears nothing and
 // says nothing). The vehicle must outlive the step.
 radio::RadioStep RadioSideOf(agents::Vehicle& vehicle, std::vector<SilentWindow> silent) {
-  return [&vehicle, silent = std::move(silent)](Nanos now,
-                                                std::span<const std::uint8_t> received) {
+  return [&vehicle, silent = std::move(silent)](Nanos now, std::span<const std::uint8_t> received) {
     if (SilentAt(silent, radio::ToSeconds(now))) return std::vector<radio::Burst>{};
     return vehicle.OnRadio(now, received);
   };

@@ -186,7 +186,8 @@ TEST(ChannelLoop, SameSeedSameCallsSameBytesAndTimes) {
     }
     loop.RunUntil(milliseconds(200));
     std::vector<Heard> log = master.steps;
-    for (const RecordingVehicle& v : vehicles) log.insert(log.end(), v.heard.begin(), v.heard.end());
+    for (const RecordingVehicle& v : vehicles)
+      log.insert(log.end(), v.heard.begin(), v.heard.end());
     return log;
   };
   EXPECT_EQ(run(3), run(3));

@@ -39,11 +39,10 @@ struct LoopMaster {
 /// MasterScheduler). `core` must outlive every use of the result.
 template <typename Core>
 LoopMaster MasterOf(Core& core) {
-  return LoopMaster{
-      [&core] { return core.NextWakeup(); },
-      [&core](Nanos now, std::span<const std::uint8_t> received) {
-        return core.Step(now, received);
-      }};
+  return LoopMaster{[&core] { return core.NextWakeup(); },
+                    [&core](Nanos now, std::span<const std::uint8_t> received) {
+                      return core.Step(now, received);
+                    }};
 }
 
 /// Owns a SharedChannel and steps it between one master (radio 0) and the vehicle
