@@ -1,7 +1,7 @@
 // The radio bench: the channel loop runs the server and the vehicle endpoints from
 // event to event (a server wakeup, the end of a transmission, a fire report, an age
 // sample); between events the bench generates fire reports and samples ages.
-#include "fireswarm/radio/radio_bench.hpp"
+#include "fireswarm/bench/radio_bench.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -20,7 +20,10 @@
 #include "fireswarm/radio/master_scheduler.hpp"
 #include "fireswarm/radio/mission_chunks.hpp"
 
-namespace fireswarm::radio {
+namespace fireswarm::bench {
+
+using radio::Nanos;
+
 namespace {
 
 using internal::BenchVehicle;
@@ -43,16 +46,16 @@ class Bench {
  public:
   explicit Bench(const RadioBenchConfig& config)
       : config_(config),
-        generation_end_(FromSeconds(config.seconds)),
-        hard_end_(generation_end_ + FromSeconds(config.drain_seconds)),
+        generation_end_(radio::FromSeconds(config.seconds)),
+        hard_end_(generation_end_ + radio::FromSeconds(config.drain_seconds)),
         server_(SchedulerConfigFor(config)),
         loop_(ChannelConfigFor(config), config.seed,
-              LoopMaster{[this] { return server_.NextWakeup(); },
-                         [this](Nanos now, std::span<const std::uint8_t> received) {
-                           return StepServer(now, received);
-                         }}),
+              radio::LoopMaster{[this] { return server_.NextWakeup(); },
+                                [this](Nanos now, std::span<const std::uint8_t> received) {
+                                  return StepServer(now, received);
+                                }}),
         report_rng_(config.seed ^ kReportSeedSalt) {
-    const Nanos period = FromSeconds(1.0 / config.telemetry_hz);
+    const Nanos period = radio::FromSeconds(1.0 / config.telemetry_hz);
     for (int i = 0; i < config.vehicles; ++i) {
       const auto id = static_cast<std::uint8_t>(i + 1);
       fleet_.push_back(std::make_unique<BenchVehicle>(EndpointConfigFor(config, id)));
@@ -87,8 +90,8 @@ class Bench {
   }
 
  private:
-  static ChannelConfig ChannelConfigFor(const RadioBenchConfig& config) {
-    ChannelConfig c;
+  static radio::ChannelConfig ChannelConfigFor(const RadioBenchConfig& config) {
+    radio::ChannelConfig c;
     c.baud = config.baud;
     c.turnaround = config.turnaround;
     c.loss = config.loss;
@@ -96,21 +99,22 @@ class Bench {
     return c;
   }
 
-  static SchedulerConfig SchedulerConfigFor(const RadioBenchConfig& config) {
-    SchedulerConfig s;
+  static radio::SchedulerConfig SchedulerConfigFor(const RadioBenchConfig& config) {
+    radio::SchedulerConfig s;
     s.mode = config.mode;
     s.checksum = config.checksum;
-    s.timing = LinkTiming{config.baud, kBitsPerByte8N1, config.turnaround};
+    s.timing = radio::LinkTiming{config.baud, radio::kBitsPerByte8N1, config.turnaround};
     s.default_telemetry_hz = config.telemetry_hz;
     return s;
   }
 
-  static VehicleEndpointConfig EndpointConfigFor(const RadioBenchConfig& config, std::uint8_t id) {
-    VehicleEndpointConfig e;
+  static radio::VehicleEndpointConfig EndpointConfigFor(const RadioBenchConfig& config,
+                                                        std::uint8_t id) {
+    radio::VehicleEndpointConfig e;
     e.id = id;
     e.mode = config.mode;
     e.checksum = config.checksum;
-    e.timing = LinkTiming{config.baud, kBitsPerByte8N1, config.turnaround};
+    e.timing = radio::LinkTiming{config.baud, radio::kBitsPerByte8N1, config.turnaround};
     return e;
   }
 
@@ -121,7 +125,7 @@ class Bench {
     const double uniform = static_cast<double>(report_rng_() >> 11U) * kTwoToMinus53;
     const double rate_hz = config_.reports_per_minute / kSecondsPerMinute;
     if (rate_hz <= 0.0) return Nanos::max();
-    return after + FromSeconds(-std::log1p(-uniform) / rate_hz);
+    return after + radio::FromSeconds(-std::log1p(-uniform) / rate_hz);
   }
 
   bool Finished(Nanos t) const {
@@ -141,18 +145,18 @@ class Bench {
   // The loop's master step, the first thing at every event time once the channel
   // has advanced: the generation-end snapshot is taken here, before anyone hears
   // what ended at that instant.
-  std::vector<Burst> StepServer(Nanos t, std::span<const std::uint8_t> received) {
+  std::vector<radio::Burst> StepServer(Nanos t, std::span<const std::uint8_t> received) {
     if (t == generation_end_) SnapshotGenerationEnd();
     if (received.empty() && t < server_.NextWakeup()) return {};
-    std::vector<Burst> bursts = server_.Step(t, received);
-    for (const SchedulerEvent& event : server_.TakeEvents()) {
+    std::vector<radio::Burst> bursts = server_.Step(t, received);
+    for (const radio::SchedulerEvent& event : server_.TakeEvents()) {
       internal::Record(event, generation_end_, fleet_, metrics_);
     }
     return bursts;
   }
 
-  static std::vector<Burst> StepVehicle(BenchVehicle& v, Nanos t,
-                                        std::span<const std::uint8_t> received) {
+  static std::vector<radio::Burst> StepVehicle(BenchVehicle& v, Nanos t,
+                                               std::span<const std::uint8_t> received) {
     // The vehicle samples its state when it hears the channel: the telemetry it
     // sends in a turn is as fresh as the burst that gave the turn.
     v.endpoint.SetTelemetry(internal::SampleTelemetry(v.endpoint.config().id, t));
@@ -173,7 +177,7 @@ class Bench {
 
   void SampleAges(Nanos t) {
     for (const auto& v : fleet_) {
-      if (v->latest_sample) v->ages_s.push_back(ToSeconds(t - *v->latest_sample));
+      if (v->latest_sample) v->ages_s.push_back(radio::ToSeconds(t - *v->latest_sample));
     }
     next_sample_ += kAgeSamplePeriod;
   }
@@ -189,8 +193,8 @@ class Bench {
   RadioBenchConfig config_;
   Nanos generation_end_;
   Nanos hard_end_;
-  MasterScheduler server_;
-  ChannelLoop loop_;  // after server_, which its master step uses
+  radio::MasterScheduler server_;
+  radio::ChannelLoop loop_;  // after server_, which its master step uses
   std::mt19937_64 report_rng_;
   std::vector<std::unique_ptr<BenchVehicle>> fleet_;
   internal::Metrics metrics_;
@@ -218,8 +222,8 @@ void RadioBenchConfig::Validate() const {
   if (!(std::isfinite(telemetry_hz) && telemetry_hz > 0.0)) {
     ThrowConfig("telemetry_hz", "> 0", telemetry_hz);
   }
-  if (mission_waypoints < 0 || std::cmp_greater(mission_waypoints, kMaxMissionWaypoints)) {
-    ThrowConfig("mission_waypoints", "in 0.." + std::to_string(kMaxMissionWaypoints),
+  if (mission_waypoints < 0 || std::cmp_greater(mission_waypoints, radio::kMaxMissionWaypoints)) {
+    ThrowConfig("mission_waypoints", "in 0.." + std::to_string(radio::kMaxMissionWaypoints),
                 mission_waypoints);
   }
 }
@@ -231,4 +235,4 @@ RadioBenchResult RunRadioBench(const RadioBenchConfig& config, const AirObserver
   return bench.Run();
 }
 
-}  // namespace fireswarm::radio
+}  // namespace fireswarm::bench
