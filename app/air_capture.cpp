@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "fireswarm/common/time.hpp"
 #include "fireswarm/radio_frame_t.hpp"
 
 namespace fireswarm::app {
@@ -18,7 +19,7 @@ std::string PartialPath(const std::string& path) {
   return path + ".partial";
 }
 
-std::int64_t Micros(radio::Nanos t) {
+std::int64_t Micros(common::Nanos t) {
   return std::chrono::duration_cast<std::chrono::microseconds>(t).count();
 }
 

@@ -18,15 +18,16 @@
 #include "air_capture.hpp"
 #include "cli.hpp"
 #include "commands.hpp"
+#include "fireswarm/bench/radio_bench.hpp"
+#include "fireswarm/common/time.hpp"
 #include "fireswarm/radio/messages.hpp"
-#include "fireswarm/radio/radio_bench.hpp"
 
 namespace fireswarm::app {
 namespace {
 
 namespace po = boost::program_options;
-using radio::RadioBenchConfig;
-using radio::RadioBenchResult;
+using bench::RadioBenchConfig;
+using bench::RadioBenchResult;
 
 constexpr const char* kName = "radio-bench";
 constexpr double kMaxTurnaroundMs = 65.535;  // u16 microseconds in a SlotSchedule
@@ -111,7 +112,7 @@ RadioBenchConfig ToConfig(const Flags& f) {
   c.mode = *mode;
   c.checksum = *checksum;
   c.baud = f.baud;
-  c.turnaround = std::chrono::round<radio::Nanos>(Milliseconds(f.turnaround_ms));
+  c.turnaround = std::chrono::round<common::Nanos>(Milliseconds(f.turnaround_ms));
   c.loss = f.loss;
   c.bit_error_rate = f.bit_error_rate;
   c.reports_per_minute = f.report_rate;
@@ -167,7 +168,7 @@ nlohmann::ordered_json ToJson(const RadioBenchConfig& c, const RadioBenchResult&
   j["mission_upload_s"] = r.mission_upload_s ? nlohmann::ordered_json(*r.mission_upload_s)
                                              : nlohmann::ordered_json(nullptr);
   nlohmann::ordered_json per_vehicle = nlohmann::ordered_json::array();
-  for (const radio::VehicleLinkFigures& v : r.per_vehicle) {
+  for (const bench::VehicleLinkFigures& v : r.per_vehicle) {
     per_vehicle.push_back({{"receiver_id", v.vehicle},
                            {"telemetry_hz", v.telemetry_hz},
                            {"telemetry_age_p50_s", v.telemetry_age_p50_s},
@@ -263,11 +264,11 @@ int RunRadioBench(const std::vector<std::string>& args) {
       throw UsageError(std::string("fireswarm radio-bench: ") + e.what());
     }
   }
-  radio::AirObserver observer;
+  bench::AirObserver observer;
   if (capture) observer = [&capture](const radio::AirRecord& r) { capture->Record(r); };
 
   const auto wall_start = std::chrono::steady_clock::now();
-  const RadioBenchResult result = radio::RunRadioBench(config, observer);
+  const RadioBenchResult result = bench::RunRadioBench(config, observer);
   const double wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   if (capture) capture->Commit();

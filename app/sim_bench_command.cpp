@@ -14,7 +14,7 @@
 
 #include "cli.hpp"
 #include "commands.hpp"
-#include "fireswarm/sim2d/bench_scenario.hpp"
+#include "fireswarm/bench/bench_scenario.hpp"
 #include "fireswarm/sim2d/simulation.hpp"
 
 namespace fireswarm::app {
@@ -48,7 +48,7 @@ double Since(Clock::time_point start) {
 }
 
 // Steps the simulation for `seconds`, timing each part on the wall clock.
-Figures Fly(sim2d::BenchScenario& scenario, double seconds) {
+Figures Fly(bench::BenchScenario& scenario, double seconds) {
   sim2d::Simulation sim(scenario.config);
   sim2d::World& world = sim.world();
   const auto steps = static_cast<std::int64_t>(std::llround(seconds / world.step_s()));
@@ -92,7 +92,7 @@ std::string HexHash(std::uint64_t hash) {
   return out.str();
 }
 
-nlohmann::ordered_json ToJson(const sim2d::BenchScenarioSpec& spec, const Figures& f) {
+nlohmann::ordered_json ToJson(const bench::BenchScenarioSpec& spec, const Figures& f) {
   nlohmann::ordered_json j;
   j["drones"] = spec.drones;
   j["camera"] = spec.camera;
@@ -118,7 +118,7 @@ nlohmann::ordered_json ToJson(const sim2d::BenchScenarioSpec& spec, const Figure
   return j;
 }
 
-void PrintTable(const sim2d::BenchScenarioSpec& spec, const Figures& f) {
+void PrintTable(const bench::BenchScenarioSpec& spec, const Figures& f) {
   std::cout << std::fixed << std::setprecision(3);
   std::cout << "sim-bench: " << spec.drones << " drones, camera " << spec.camera << ", "
             << spec.area_km2 << " km^2, " << f.sim_seconds << " simulated s, seed " << spec.seed
@@ -148,7 +148,7 @@ void PrintTable(const sim2d::BenchScenarioSpec& spec, const Figures& f) {
 }  // namespace
 
 int RunSimBench(const std::vector<std::string>& args) {
-  sim2d::BenchScenarioSpec spec;
+  bench::BenchScenarioSpec spec;
   double seconds = 60.0;
   bool json = false;
   po::options_description options("sim-bench options");
@@ -173,9 +173,9 @@ int RunSimBench(const std::vector<std::string>& args) {
     throw UsageError("fireswarm sim-bench: --seconds must be in (0, 86400], got " +
                      std::to_string(seconds));
   }
-  sim2d::BenchScenario scenario;
+  bench::BenchScenario scenario;
   try {
-    scenario = sim2d::MakeBenchScenario(spec);
+    scenario = bench::MakeBenchScenario(spec);
   } catch (const std::invalid_argument& e) {
     throw UsageError(std::string("fireswarm sim-bench: ") + e.what());
   }

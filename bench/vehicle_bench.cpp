@@ -8,9 +8,9 @@
 
 #include "fireswarm/agents/fire_detector.hpp"
 #include "fireswarm/agents/vehicle.hpp"
+#include "fireswarm/bench/bench_scenario.hpp"
 #include "fireswarm/hil/sim_bridge.hpp"
 #include "fireswarm/radio/mission_chunks.hpp"
-#include "fireswarm/sim2d/bench_scenario.hpp"
 #include "fireswarm/sim2d/lane_pilot.hpp"
 
 namespace fireswarm {
@@ -68,14 +68,14 @@ struct Fleet {
     lockstep.RunUntil(40.0);  // take-off done, searching
   }
 
-  static sim2d::BenchScenario MakeScenario(int drones) {
-    sim2d::BenchScenarioSpec spec;
+  static bench::BenchScenario MakeScenario(int drones) {
+    bench::BenchScenarioSpec spec;
     spec.drones = drones;
     spec.area_km2 = kAreaKm2;
-    return sim2d::MakeBenchScenario(spec);
+    return bench::MakeBenchScenario(spec);
   }
 
-  sim2d::BenchScenario scenario;
+  bench::BenchScenario scenario;
   sim2d::Simulation simulation;
   hil::LockstepFleet lockstep;
   std::vector<std::unique_ptr<agents::Vehicle>> vehicles;
@@ -100,7 +100,7 @@ BENCHMARK(BM_FleetClosedLoop)->Arg(10)->Arg(100)->Unit(benchmark::kMillisecond);
 
 // The same fleets flown by sim2d's truth-flying LanePilot: the simulator alone.
 void BM_FleetLanePilots(benchmark::State& state) {
-  sim2d::BenchScenario scenario = Fleet::MakeScenario(static_cast<int>(state.range(0)));
+  bench::BenchScenario scenario = Fleet::MakeScenario(static_cast<int>(state.range(0)));
   sim2d::Simulation simulation(scenario.config);
   const auto steps = static_cast<int>(1.0 / simulation.world().step_s());
   const auto fly = [&] {

@@ -6,16 +6,19 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <span>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "fireswarm/agents/params.hpp"
 #include "fireswarm/agents/vehicle.hpp"
+#include "fireswarm/common/time.hpp"
 #include "fireswarm/hil/sim_bridge.hpp"
 #include "fireswarm/planner/plan.hpp"
 #include "fireswarm/radio/channel.hpp"
-#include "fireswarm/radio/link.hpp"
+#include "fireswarm/radio/channel_loop.hpp"
 #include "fireswarm/server/mission_manager.hpp"
 #include "fireswarm/server/server.hpp"
 #include "fireswarm/sim2d/simulation.hpp"
@@ -25,7 +28,7 @@
 namespace fireswarm::run {
 namespace {
 
-using radio::Nanos;
+using common::Nanos;
 
 constexpr std::uint16_t kMissionId = 1;
 /// Mixed into the scenario seed for the radio channel's own generator, so the
@@ -41,16 +44,19 @@ struct SilentWindow {
   double until_s = 0.0;
 };
 
-struct FlyingVehicle {
-  std::unique_ptr<agents::Vehicle> vehicle;
-  radio::SimLink link;
-  std::vector<SilentWindow> silent;
+bool SilentAt(const std::vector<SilentWindow>& silent, double t_s) {
+  return std::ranges::any_of(
+      silent, [&](const SilentWindow& w) { return w.from_s <= t_s && t_s < w.until_s; });
+}
 
-  bool SilentAt(double t_s) const {
-    return std::ranges::any_of(
-        silent, [&](const SilentWindow& w) { return w.from_s <= t_s && t_s < w.until_s; });
-  }
-};
+// A vehicle on the radio; a silent one is cut off both ways (it hears nothing and
+// says nothing). The vehicle must outlive the step.
+radio::RadioStep RadioSideOf(agents::Vehicle& vehicle, std::vector<SilentWindow> silent) {
+  return [&vehicle, silent = std::move(silent)](Nanos now, std::span<const std::uint8_t> received) {
+    if (SilentAt(silent, common::ToSeconds(now))) return std::vector<radio::Burst>{};
+    return vehicle.OnRadio(now, received);
+  };
+}
 
 server::ServerConfig MakeServerConfig(const Scenario& scenario) {
   server::ServerConfig config;
@@ -114,10 +120,9 @@ class Lockstep {
                                                    internal::StandPositions(scenario, missions))),
         fleet_(simulation_),
         server_config_(MakeServerConfig(scenario)),
-        channel_(MakeChannelConfig(scenario, server_config_.radio.timing),
-                 scenario.seed ^ kChannelSeedSalt),
-        server_link_(channel_, channel_.AddRadio()),
-        server_(server_config_, scenario.area.frame) {
+        server_(server_config_, scenario.area.frame),
+        radio_(MakeChannelConfig(scenario, server_config_.radio.timing),
+               scenario.seed ^ kChannelSeedSalt, radio::MasterOf(server_)) {
     for (const int id : scenario.fleet.ReceiverIds()) {
       agents::VehicleConfig config;
       config.id = static_cast<std::uint8_t>(id);
@@ -134,9 +139,8 @@ class Lockstep {
       vehicle->OnParamWrite(pitch);
       fleet_.Add(*vehicle);
       server_.AddVehicle(id);
-      vehicles_.push_back(FlyingVehicle{std::move(vehicle),
-                                        radio::SimLink(channel_, channel_.AddRadio()),
-                                        SilentWindowsOf(scenario, id)});
+      radio_.AddVehicle(RadioSideOf(*vehicle, SilentWindowsOf(scenario, id)));
+      vehicles_.push_back(std::move(vehicle));
     }
     server_.LoadMission(missions);
     std::string why;
@@ -149,19 +153,19 @@ class Lockstep {
   /// to the step's end.
   void Step() {
     fleet_.Step();
-    RunRadioUntil(fleet_.now());
+    radio_.RunUntil(fleet_.now());
   }
 
   double time_s() const { return simulation_.time_s(); }
   const sim2d::World& world() const { return simulation_.world(); }
   const sim2d::Simulation& simulation() const { return simulation_; }
   const server::Server& server() const { return server_; }
-  const radio::SharedChannel& channel() const { return channel_; }
-  const std::vector<FlyingVehicle>& vehicles() const { return vehicles_; }
+  const radio::SharedChannel& channel() const { return radio_.channel(); }
+  const std::vector<std::unique_ptr<agents::Vehicle>>& vehicles() const { return vehicles_; }
 
   std::size_t PendingReports() const {
     std::size_t pending = 0;
-    for (const FlyingVehicle& v : vehicles_) pending += v.vehicle->endpoint().pending_reports();
+    for (const auto& v : vehicles_) pending += v->endpoint().pending_reports();
     return pending;
   }
 
@@ -169,79 +173,35 @@ class Lockstep {
   internal::FinalState Final() const {
     internal::FinalState out;
     out.sim_seconds = time_s();
-    out.radio_busy_s = radio::ToSeconds(channel_.stats().busy);
-    for (const FlyingVehicle& v : vehicles_) {
+    out.radio_busy_s = common::ToSeconds(channel().stats().busy);
+    for (const auto& v : vehicles_) {
       // A vehicle the simulator lost or crashed is that, whatever its software says.
-      const sim2d::FlightPhase phase = world().Truth(v.vehicle->id()).phase;
-      std::string state(radio::ToString(v.vehicle->mode()));
+      const sim2d::FlightPhase phase = world().Truth(v->id()).phase;
+      std::string state(radio::ToString(v->mode()));
       if (phase == sim2d::FlightPhase::kLost) state = "lost";
       if (phase == sim2d::FlightPhase::kCrashed) state = "crashed";
-      out.modes[v.vehicle->id()] = state;
-      out.reports_queued += v.vehicle->endpoint().stats().reports_queued;
+      out.modes[v->id()] = state;
+      out.reports_queued += v->endpoint().stats().reports_queued;
     }
     return out;
   }
 
   /// Every vehicle landed after flying, crashed or lost.
   bool AllDown() const {
-    return std::ranges::all_of(vehicles_, [&](const FlyingVehicle& v) {
-      const sim2d::FlightPhase phase = world().Truth(v.vehicle->id()).phase;
+    return std::ranges::all_of(vehicles_, [&](const auto& v) {
+      const sim2d::FlightPhase phase = world().Truth(v->id()).phase;
       return phase == sim2d::FlightPhase::kCrashed || phase == sim2d::FlightPhase::kLost ||
-             (phase == sim2d::FlightPhase::kOnGround &&
-              v.vehicle->mode() == radio::FlightMode::kLanded);
+             (phase == sim2d::FlightPhase::kOnGround && v->mode() == radio::FlightMode::kLanded);
     });
   }
 
  private:
-  // The reference event loop of tests/hil/hil_test_helpers.hpp (GroundLink::RunUntil)
-  // with server::Server as the master, and silent vehicles cut off both ways.
-  void RunRadioUntil(Nanos end) {
-    std::vector<std::uint8_t> bytes;
-    // Many turns at one instant are normal (a burst, its replies); endless ones are
-    // a wake-up stuck in the past, which must fail the run rather than hang CI.
-    constexpr int kMaxWakeupsAtOneInstant = 100'000;
-    Nanos last{-1};
-    int same_instant = 0;
-    while (true) {
-      // A request queued between calls makes the server due at once, which may be
-      // before where the channel's time already is.
-      const Nanos t =
-          std::max(channel_.now(),
-                   std::min(server_.NextWakeup(), channel_.NextEventTime().value_or(Nanos::max())));
-      if (t > end) break;
-      same_instant = t == last ? same_instant + 1 : 0;
-      last = t;
-      if (same_instant > kMaxWakeupsAtOneInstant) {
-        throw std::logic_error("runner: the server asks to be woken at " +
-                               std::to_string(radio::ToSeconds(t)) +
-                               " s again and again without progress");
-      }
-      channel_.AdvanceTo(t);
-      bytes.clear();
-      server_link_.Receive(t, bytes);
-      for (const radio::Burst& burst : server_.Step(t, bytes)) {
-        server_link_.Transmit(t, burst.start, burst.bytes);
-      }
-      const double t_s = radio::ToSeconds(t);
-      for (FlyingVehicle& v : vehicles_) {
-        bytes.clear();
-        v.link.Receive(t, bytes);
-        if (bytes.empty() || v.SilentAt(t_s)) continue;
-        for (const radio::Burst& burst : v.vehicle->OnRadio(t, bytes)) {
-          v.link.Transmit(t, burst.start, burst.bytes);
-        }
-      }
-    }
-    channel_.AdvanceTo(std::max(end, channel_.now()));
-  }
-
   sim2d::Simulation simulation_;
   hil::LockstepFleet fleet_;
   server::ServerConfig server_config_;
-  radio::SharedChannel channel_;
-  radio::SimLink server_link_;
   server::Server server_;
-  std::vector<FlyingVehicle> vehicles_;
+  radio::ChannelLoop radio_;  // steps server_ (its master) and the vehicles
+  std::vector<std::unique_ptr<agents::Vehicle>> vehicles_;
 };
 
 // When to end a run before its duration: the mission is complete (or aborted) and

@@ -7,20 +7,23 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "fireswarm/agents/vehicle.hpp"
+#include "fireswarm/common/time.hpp"
 #include "fireswarm/hil/sim_bridge.hpp"
 #include "fireswarm/radio/channel.hpp"
-#include "fireswarm/radio/link.hpp"
+#include "fireswarm/radio/channel_loop.hpp"
 #include "fireswarm/radio/master_scheduler.hpp"
 #include "fireswarm/radio/mission_chunks.hpp"
 #include "fireswarm/sim2d/simulation.hpp"
 
 namespace fireswarm::hil::testing {
 
-using radio::Nanos;
+using common::Nanos;
 
 inline sim2d::VehicleConfig SimVehicleAt(int id, sim2d::Vec2 launch_m) {
   sim2d::VehicleConfig vehicle;
@@ -51,18 +54,18 @@ class GroundLink {
  public:
   explicit GroundLink(const radio::ChannelConfig& channel = {},
                       const radio::SchedulerConfig& server = {})
-      : channel_(channel, /*seed=*/3),
-        server_link_(channel_, channel_.AddRadio()),
-        server_(server) {}
+      : server_(server), loop_(channel, /*seed=*/3, MasterStep()) {}
 
   /// Registers `vehicle` with telemetry at `telemetry_hz`.
   void Add(agents::Vehicle& vehicle, double telemetry_hz = 2.0) {
-    vehicles_.push_back(Radio{&vehicle, radio::SimLink(channel_, channel_.AddRadio())});
+    loop_.AddVehicle([&vehicle](Nanos now, std::span<const std::uint8_t> received) {
+      return vehicle.OnRadio(now, received);
+    });
     server_.AddVehicle(vehicle.id(), telemetry_hz);
   }
 
   radio::MasterScheduler& server() { return server_; }
-  const radio::SharedChannel& channel() const { return channel_; }
+  const radio::SharedChannel& channel() const { return loop_.channel(); }
 
   /// Uploads `waypoints` as mission `mission_id` and queues its start (which the
   /// vehicle refuses until it has a GPS fix).
@@ -78,32 +81,7 @@ class GroundLink {
   }
 
   /// Runs the channel, the server and the vehicles' radio sides up to `end`.
-  void RunUntil(Nanos end) {
-    while (true) {
-      // A request queued between calls makes the server due at once, which may be
-      // before where the channel's time already is.
-      const Nanos t =
-          std::max(channel_.now(),
-                   std::min(server_.NextWakeup(), channel_.NextEventTime().value_or(Nanos::max())));
-      if (t > end) break;
-      channel_.AdvanceTo(t);
-      std::vector<std::uint8_t> bytes;
-      server_link_.Receive(t, bytes);
-      for (const radio::Burst& burst : server_.Step(t, bytes)) {
-        server_link_.Transmit(t, burst.start, burst.bytes);
-      }
-      for (auto& event : server_.TakeEvents()) events_.push_back(std::move(event));
-      for (Radio& radio : vehicles_) {
-        bytes.clear();
-        radio.link.Receive(t, bytes);
-        if (bytes.empty()) continue;
-        for (const radio::Burst& burst : radio.vehicle->OnRadio(t, bytes)) {
-          radio.link.Transmit(t, burst.start, burst.bytes);
-        }
-      }
-    }
-    channel_.AdvanceTo(std::max(end, channel_.now()));
-  }
+  void RunUntil(Nanos end) { loop_.RunUntil(end); }
 
   template <typename Event>
   std::vector<Event> EventsOf() const {
@@ -115,15 +93,21 @@ class GroundLink {
   }
 
  private:
-  struct Radio {
-    agents::Vehicle* vehicle;
-    radio::SimLink link;
-  };
-  radio::SharedChannel channel_;
-  radio::SimLink server_link_;
+  // The server steps as the loop's master; its events are kept for EventsOf().
+  radio::LoopMaster MasterStep() {
+    return radio::LoopMaster{[this] { return server_.NextWakeup(); },
+                             [this](Nanos now, std::span<const std::uint8_t> received) {
+                               std::vector<radio::Burst> bursts = server_.Step(now, received);
+                               for (auto& event : server_.TakeEvents()) {
+                                 events_.push_back(std::move(event));
+                               }
+                               return bursts;
+                             }};
+  }
+
   radio::MasterScheduler server_;
-  std::vector<Radio> vehicles_;
   std::vector<radio::SchedulerEvent> events_;
+  radio::ChannelLoop loop_;  // after server_ and events_, which its master step uses
 };
 
 /// A simulation, its vehicles and the ground link, stepped together.

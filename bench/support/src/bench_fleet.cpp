@@ -5,9 +5,13 @@
 #include <cmath>
 #include <limits>
 
+#include "fireswarm/common/time.hpp"
 #include "fireswarm/radio/mission_chunks.hpp"
 
-namespace fireswarm::radio::internal {
+namespace fireswarm::bench::internal {
+
+using common::Nanos;
+
 namespace {
 
 // Where the bench fleet flies: only the size of the frames matters to the link.
@@ -49,29 +53,29 @@ double Max(const std::vector<double>& values) {
 
 }  // namespace
 
-CommandResult BenchHandler::OnCommand(const Command& /*command*/) {
-  return CommandResult::kAccepted;
+radio::CommandResult BenchHandler::OnCommand(const radio::Command& /*command*/) {
+  return radio::CommandResult::kAccepted;
 }
 
-MissionAckStatus BenchHandler::OnMissionChunk(const MissionChunk& chunk) {
-  if (chunk.chunk_index >= chunk.chunk_count) return MissionAckStatus::kRejected;
+radio::MissionAckStatus BenchHandler::OnMissionChunk(const radio::MissionChunk& chunk) {
+  if (chunk.chunk_index >= chunk.chunk_count) return radio::MissionAckStatus::kRejected;
   chunks_stored_.resize(chunk.chunk_count, false);
   chunks_stored_[chunk.chunk_index] = true;
   const bool complete =
       std::all_of(chunks_stored_.begin(), chunks_stored_.end(), [](bool stored) { return stored; });
-  return complete ? MissionAckStatus::kComplete : MissionAckStatus::kAccepted;
+  return complete ? radio::MissionAckStatus::kComplete : radio::MissionAckStatus::kAccepted;
 }
 
-ParamValue BenchHandler::OnParamRead(const ParamRead& read) {
-  return ParamValue{{}, read.param_id, 0.0F, ParamStatus::kUnknownParam};
+radio::ParamValue BenchHandler::OnParamRead(const radio::ParamRead& read) {
+  return radio::ParamValue{{}, read.param_id, 0.0F, radio::ParamStatus::kUnknownParam};
 }
 
-ParamValue BenchHandler::OnParamWrite(const ParamWrite& write) {
-  return ParamValue{{}, write.param_id, write.value, ParamStatus::kOk};
+radio::ParamValue BenchHandler::OnParamWrite(const radio::ParamWrite& write) {
+  return radio::ParamValue{{}, write.param_id, write.value, radio::ParamStatus::kOk};
 }
 
-Telemetry SampleTelemetry(std::uint8_t id, Nanos now) {
-  Telemetry t;
+radio::Telemetry SampleTelemetry(std::uint8_t id, Nanos now) {
+  radio::Telemetry t;
   t.time_ms = Millis(now);
   t.lat_deg = LatOf(id);
   t.lon_deg = kBaseLonDeg;
@@ -79,13 +83,13 @@ Telemetry SampleTelemetry(std::uint8_t id, Nanos now) {
   t.velocity_north_mps = kSpeedMps;
   t.battery_v = kBatteryV;
   t.battery_percent = kBatteryPercent;
-  t.mode = FlightMode::kSearch;
-  t.flags = telemetry_flags::kGpsFix | telemetry_flags::kMissionValid;
+  t.mode = radio::FlightMode::kSearch;
+  t.flags = radio::telemetry_flags::kGpsFix | radio::telemetry_flags::kMissionValid;
   return t;
 }
 
-FireReport SampleReport(std::uint8_t id, Nanos now) {
-  FireReport r;
+radio::FireReport SampleReport(std::uint8_t id, Nanos now) {
+  radio::FireReport r;
   r.time_ms = Millis(now);
   r.lat_deg = LatOf(id) + kVehicleSpacingDeg / 2;
   r.lon_deg = kBaseLonDeg;
@@ -100,34 +104,35 @@ FireReport SampleReport(std::uint8_t id, Nanos now) {
   return r;
 }
 
-void QueueMission(MasterScheduler& server, BenchVehicle& vehicle, int waypoints) {
+void QueueMission(radio::MasterScheduler& server, BenchVehicle& vehicle, int waypoints) {
   const std::uint8_t id = vehicle.endpoint.config().id;
-  std::vector<Waypoint> mission(static_cast<std::size_t>(waypoints));
+  std::vector<radio::Waypoint> mission(static_cast<std::size_t>(waypoints));
   for (std::size_t i = 0; i < mission.size(); ++i) {
     // Latitude steps restart in every chunk: only the frames' size matters here.
-    const auto in_chunk = static_cast<double>(i % kMaxWaypointsPerChunk);
-    mission[i] =
-        Waypoint{LatOf(id) + kVehicleSpacingDeg * in_chunk, kBaseLonDeg, kAltitudeM, kSpeedMps, 0};
+    const auto in_chunk = static_cast<double>(i % radio::kMaxWaypointsPerChunk);
+    mission[i] = radio::Waypoint{LatOf(id) + kVehicleSpacingDeg * in_chunk, kBaseLonDeg, kAltitudeM,
+                                 kSpeedMps, 0};
   }
-  const std::vector<MissionChunk> chunks = SplitMission(kMissionId, mission);
-  for (const MissionChunk& chunk : chunks) server.SendMissionChunk(id, chunk);
+  const std::vector<radio::MissionChunk> chunks = radio::SplitMission(kMissionId, mission);
+  for (const radio::MissionChunk& chunk : chunks) server.SendMissionChunk(id, chunk);
   vehicle.chunks_left = static_cast<int>(chunks.size());
 }
 
-void Record(const SchedulerEvent& event, Nanos generation_end, Fleet& fleet, Metrics& metrics) {
-  if (const auto* telemetry = std::get_if<TelemetryReceived>(&event)) {
+void Record(const radio::SchedulerEvent& event, Nanos generation_end, Fleet& fleet,
+            Metrics& metrics) {
+  if (const auto* telemetry = std::get_if<radio::TelemetryReceived>(&event)) {
     BenchVehicle& v = *fleet.at(telemetry->vehicle - 1U);
     if (telemetry->received <= generation_end) ++v.telemetry_received;
     v.latest_sample = std::chrono::milliseconds(telemetry->telemetry.time_ms);
-  } else if (const auto* report = std::get_if<FireReportReceived>(&event)) {
+  } else if (const auto* report = std::get_if<radio::FireReportReceived>(&event)) {
     const BenchVehicle& v = *fleet.at(report->vehicle - 1U);
     ++metrics.reports_received;
     const Nanos generated = v.report_generated.at(report->report.report_id);
-    metrics.report_latencies_s.push_back(ToSeconds(report->received - generated));
-  } else if (const auto* finished = std::get_if<RequestFinished>(&event)) {
+    metrics.report_latencies_s.push_back(common::ToSeconds(report->received - generated));
+  } else if (const auto* finished = std::get_if<radio::RequestFinished>(&event)) {
     BenchVehicle& v = *fleet.at(finished->vehicle - 1U);
     if (v.chunks_left == 0) return;
-    if (finished->status == RequestStatus::kFailed) {
+    if (finished->status == radio::RequestStatus::kFailed) {
       metrics.mission_failed = true;
       v.chunks_left = 0;
     } else {
@@ -141,12 +146,12 @@ void Record(const SchedulerEvent& event, Nanos generation_end, Fleet& fleet, Met
 }
 
 RadioBenchResult Figures(const RadioBenchConfig& config, const Snapshot& snapshot,
-                         const Metrics& metrics, const MasterScheduler& server,
-                         const SharedChannel& channel, const Fleet& fleet, Nanos end) {
+                         const Metrics& metrics, const radio::MasterScheduler& server,
+                         const radio::SharedChannel& channel, const Fleet& fleet, Nanos end) {
   RadioBenchResult r;
   const double window_s = config.seconds;
-  r.sim_seconds = ToSeconds(end);
-  r.busy_fraction = ToSeconds(snapshot.busy) / window_s;
+  r.sim_seconds = common::ToSeconds(end);
+  r.busy_fraction = common::ToSeconds(snapshot.busy) / window_s;
   r.payload_bytes_per_s = static_cast<double>(snapshot.payload_bytes) / window_s;
   double rate_sum = 0.0;
   r.telemetry_hz_min = std::numeric_limits<double>::infinity();
@@ -172,7 +177,7 @@ RadioBenchResult Figures(const RadioBenchConfig& config, const Snapshot& snapsho
   r.reports_sent = metrics.reports_sent;
   r.reports_received = metrics.reports_received;
   r.reports_lost = metrics.reports_sent - metrics.reports_received;
-  const SchedulerStats& s = server.stats();
+  const radio::SchedulerStats& s = server.stats();
   r.duplicate_reports = s.duplicate_reports;
   r.transmissions = channel.stats().transmissions;
   r.collisions = channel.stats().collisions;
@@ -185,9 +190,9 @@ RadioBenchResult Figures(const RadioBenchConfig& config, const Snapshot& snapsho
   r.checksum_errors = server.parser_stats().checksum_errors;
   for (const auto& v : fleet) r.checksum_errors += v->endpoint.parser_stats().checksum_errors;
   if (config.mission_waypoints > 0 && !metrics.mission_failed && metrics.missions_pending == 0) {
-    r.mission_upload_s = ToSeconds(metrics.mission_done);
+    r.mission_upload_s = common::ToSeconds(metrics.mission_done);
   }
   return r;
 }
 
-}  // namespace fireswarm::radio::internal
+}  // namespace fireswarm::bench::internal

@@ -1,4 +1,4 @@
-#include "fireswarm/sim2d/bench_scenario.hpp"
+#include "fireswarm/bench/bench_scenario.hpp"
 
 #include <cmath>
 #include <stdexcept>
@@ -6,7 +6,7 @@
 
 #include "fireswarm/common/camera_model.hpp"
 
-namespace fireswarm::sim2d {
+namespace fireswarm::bench {
 namespace {
 
 constexpr int kMaxDrones = 1'000;
@@ -53,11 +53,11 @@ void BenchScenarioSpec::Validate() const {
 BenchScenario MakeBenchScenario(const BenchScenarioSpec& spec) {
   spec.Validate();
   const double side_m = std::sqrt(spec.area_km2) * kMetresPerKm;
-  const Vec2 min_m(-side_m / 2.0, -side_m / 2.0);
+  const sim2d::Vec2 min_m(-side_m / 2.0, -side_m / 2.0);
   const double strip_m = side_m / spec.drones;
 
   BenchScenario scenario;
-  SimulationConfig& config = scenario.config;
+  sim2d::SimulationConfig& config = scenario.config;
   config.world.seed = spec.seed;
   config.fire.origin_m = min_m;
   config.fire.width_m = side_m;
@@ -67,22 +67,22 @@ BenchScenario MakeBenchScenario(const BenchScenarioSpec& spec) {
   for (int i = 0; i < spec.drones; ++i) {
     const int id = i + 1;
     const double strip_x = min_m.x() + i * strip_m;
-    VehicleConfig vehicle;
+    sim2d::VehicleConfig vehicle;
     vehicle.id = id;
-    vehicle.launch_position_m = Vec2(strip_x + strip_m / 2.0, min_m.y());
+    vehicle.launch_position_m = sim2d::Vec2(strip_x + strip_m / 2.0, min_m.y());
     config.world.vehicles.push_back(vehicle);
     if (spec.camera != "none") config.cameras.push_back({id, spec.camera, {}, {}});
 
-    LanePilotParams pilot;
+    sim2d::LanePilotParams pilot;
     pilot.altitude_m = spec.altitude_m + (i % kAltitudeLayers) * kLayerSpacingM;
     pilot.speed_mps = spec.speed_mps;
     const double spacing_m = FootprintWidthM(spec.camera, pilot.altitude_m) * (1.0 - kLaneOverlap);
     scenario.pilots.emplace_back(
-        LawnmowerLanes(Vec2(strip_x, min_m.y()), Vec2(strip_x + strip_m, min_m.y() + side_m),
-                       spacing_m),
+        sim2d::LawnmowerLanes(sim2d::Vec2(strip_x, min_m.y()),
+                              sim2d::Vec2(strip_x + strip_m, min_m.y() + side_m), spacing_m),
         pilot);
   }
   return scenario;
 }
 
-}  // namespace fireswarm::sim2d
+}  // namespace fireswarm::bench

@@ -1,12 +1,13 @@
-// The radio bench loop: advance simulated time to the next event (a server wakeup,
-// the end of a transmission, a fire report, an age sample), deliver what the channel
-// resolved, step the cores, and put their bursts on the air.
-#include "fireswarm/radio/radio_bench.hpp"
+// The radio bench: the channel loop runs the server and the vehicle endpoints from
+// event to event (a server wakeup, the end of a transmission, a fire report, an age
+// sample); between events the bench generates fire reports and samples ages.
+#include "fireswarm/bench/radio_bench.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <memory>
 #include <random>
+#include <span>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -14,12 +15,16 @@
 #include <vector>
 
 #include "bench_fleet.hpp"
+#include "fireswarm/common/time.hpp"
 #include "fireswarm/radio/channel.hpp"
-#include "fireswarm/radio/link.hpp"
+#include "fireswarm/radio/channel_loop.hpp"
 #include "fireswarm/radio/master_scheduler.hpp"
 #include "fireswarm/radio/mission_chunks.hpp"
 
-namespace fireswarm::radio {
+namespace fireswarm::bench {
+
+using common::Nanos;
+
 namespace {
 
 using internal::BenchVehicle;
@@ -42,16 +47,22 @@ class Bench {
  public:
   explicit Bench(const RadioBenchConfig& config)
       : config_(config),
-        generation_end_(FromSeconds(config.seconds)),
-        hard_end_(generation_end_ + FromSeconds(config.drain_seconds)),
-        channel_(ChannelConfigFor(config), config.seed),
-        server_link_(channel_, channel_.AddRadio()),
+        generation_end_(common::FromSeconds(config.seconds)),
+        hard_end_(generation_end_ + common::FromSeconds(config.drain_seconds)),
         server_(SchedulerConfigFor(config)),
+        loop_(ChannelConfigFor(config), config.seed,
+              radio::LoopMaster{[this] { return server_.NextWakeup(); },
+                                [this](Nanos now, std::span<const std::uint8_t> received) {
+                                  return StepServer(now, received);
+                                }}),
         report_rng_(config.seed ^ kReportSeedSalt) {
-    const Nanos period = FromSeconds(1.0 / config.telemetry_hz);
+    const Nanos period = common::FromSeconds(1.0 / config.telemetry_hz);
     for (int i = 0; i < config.vehicles; ++i) {
       const auto id = static_cast<std::uint8_t>(i + 1);
-      fleet_.push_back(std::make_unique<BenchVehicle>(channel_, EndpointConfigFor(config, id)));
+      fleet_.push_back(std::make_unique<BenchVehicle>(EndpointConfigFor(config, id)));
+      loop_.AddVehicle([&v = *fleet_.back()](Nanos now, std::span<const std::uint8_t> received) {
+        return StepVehicle(v, now, received);
+      });
       // Staggered first turns spread the telemetry load over the period.
       server_.AddVehicle(id, config.telemetry_hz, period * i / config.vehicles);
       fleet_.back()->next_report =
@@ -65,26 +76,23 @@ class Bench {
     }
   }
 
-  void ObserveAir(const AirObserver& observer) { channel_.SetAirObserver(observer); }
+  void ObserveAir(const AirObserver& observer) { loop_.channel().SetAirObserver(observer); }
 
   RadioBenchResult Run() {
     Nanos t{0};
     while (!Finished(t)) {
       t = NextEventTime();
-      channel_.AdvanceTo(t);
-      if (t == generation_end_) SnapshotGenerationEnd();
-      StepServer(t);
-      StepVehicles(t);
+      loop_.StepAt(t);
       GenerateReports(t);
       if (t == next_sample_) SampleAges(t);
     }
     if (!snapshot_) SnapshotGenerationEnd();
-    return internal::Figures(config_, *snapshot_, metrics_, server_, channel_, fleet_, t);
+    return internal::Figures(config_, *snapshot_, metrics_, server_, loop_.channel(), fleet_, t);
   }
 
  private:
-  static ChannelConfig ChannelConfigFor(const RadioBenchConfig& config) {
-    ChannelConfig c;
+  static radio::ChannelConfig ChannelConfigFor(const RadioBenchConfig& config) {
+    radio::ChannelConfig c;
     c.baud = config.baud;
     c.turnaround = config.turnaround;
     c.loss = config.loss;
@@ -92,21 +100,22 @@ class Bench {
     return c;
   }
 
-  static SchedulerConfig SchedulerConfigFor(const RadioBenchConfig& config) {
-    SchedulerConfig s;
+  static radio::SchedulerConfig SchedulerConfigFor(const RadioBenchConfig& config) {
+    radio::SchedulerConfig s;
     s.mode = config.mode;
     s.checksum = config.checksum;
-    s.timing = LinkTiming{config.baud, kBitsPerByte8N1, config.turnaround};
+    s.timing = radio::LinkTiming{config.baud, radio::kBitsPerByte8N1, config.turnaround};
     s.default_telemetry_hz = config.telemetry_hz;
     return s;
   }
 
-  static VehicleEndpointConfig EndpointConfigFor(const RadioBenchConfig& config, std::uint8_t id) {
-    VehicleEndpointConfig e;
+  static radio::VehicleEndpointConfig EndpointConfigFor(const RadioBenchConfig& config,
+                                                        std::uint8_t id) {
+    radio::VehicleEndpointConfig e;
     e.id = id;
     e.mode = config.mode;
     e.checksum = config.checksum;
-    e.timing = LinkTiming{config.baud, kBitsPerByte8N1, config.turnaround};
+    e.timing = radio::LinkTiming{config.baud, radio::kBitsPerByte8N1, config.turnaround};
     return e;
   }
 
@@ -117,7 +126,7 @@ class Bench {
     const double uniform = static_cast<double>(report_rng_() >> 11U) * kTwoToMinus53;
     const double rate_hz = config_.reports_per_minute / kSecondsPerMinute;
     if (rate_hz <= 0.0) return Nanos::max();
-    return after + FromSeconds(-std::log1p(-uniform) / rate_hz);
+    return after + common::FromSeconds(-std::log1p(-uniform) / rate_hz);
   }
 
   bool Finished(Nanos t) const {
@@ -127,37 +136,32 @@ class Bench {
   }
 
   Nanos NextEventTime() const {
-    Nanos next = std::min(server_.NextWakeup(), channel_.NextEventTime().value_or(Nanos::max()));
+    Nanos next = loop_.NextEventTime();
     for (const auto& v : fleet_) next = std::min(next, v->next_report);
     if (!snapshot_) next = std::min(next, generation_end_);
     if (next_sample_ <= generation_end_) next = std::min(next, next_sample_);
     return std::min(next, hard_end_);
   }
 
-  void StepServer(Nanos t) {
-    received_.clear();
-    server_link_.Receive(t, received_);
-    if (received_.empty() && t < server_.NextWakeup()) return;
-    for (const Burst& burst : server_.Step(t, received_)) {
-      server_link_.Transmit(t, burst.start, burst.bytes);
-    }
-    for (const SchedulerEvent& event : server_.TakeEvents()) {
+  // The loop's master step, the first thing at every event time once the channel
+  // has advanced: the generation-end snapshot is taken here, before anyone hears
+  // what ended at that instant.
+  std::vector<radio::Burst> StepServer(Nanos t, std::span<const std::uint8_t> received) {
+    if (t == generation_end_) SnapshotGenerationEnd();
+    if (received.empty() && t < server_.NextWakeup()) return {};
+    std::vector<radio::Burst> bursts = server_.Step(t, received);
+    for (const radio::SchedulerEvent& event : server_.TakeEvents()) {
       internal::Record(event, generation_end_, fleet_, metrics_);
     }
+    return bursts;
   }
 
-  void StepVehicles(Nanos t) {
-    for (auto& v : fleet_) {
-      received_.clear();
-      v->link.Receive(t, received_);
-      if (received_.empty()) continue;
-      // The vehicle samples its state when it hears the channel: the telemetry it
-      // sends in a turn is as fresh as the burst that gave the turn.
-      v->endpoint.SetTelemetry(internal::SampleTelemetry(v->endpoint.config().id, t));
-      for (const Burst& burst : v->endpoint.OnReceive(t, received_)) {
-        v->link.Transmit(t, burst.start, burst.bytes);
-      }
-    }
+  static std::vector<radio::Burst> StepVehicle(BenchVehicle& v, Nanos t,
+                                               std::span<const std::uint8_t> received) {
+    // The vehicle samples its state when it hears the channel: the telemetry it
+    // sends in a turn is as fresh as the burst that gave the turn.
+    v.endpoint.SetTelemetry(internal::SampleTelemetry(v.endpoint.config().id, t));
+    return v.endpoint.OnReceive(t, received);
   }
 
   void GenerateReports(Nanos t) {
@@ -174,14 +178,14 @@ class Bench {
 
   void SampleAges(Nanos t) {
     for (const auto& v : fleet_) {
-      if (v->latest_sample) v->ages_s.push_back(ToSeconds(t - *v->latest_sample));
+      if (v->latest_sample) v->ages_s.push_back(common::ToSeconds(t - *v->latest_sample));
     }
     next_sample_ += kAgeSamplePeriod;
   }
 
   void SnapshotGenerationEnd() {
     internal::Snapshot s;
-    s.busy = channel_.stats().busy;
+    s.busy = loop_.channel().stats().busy;
     s.payload_bytes = server_.stats().payload_bytes;
     for (const auto& v : fleet_) s.payload_bytes += v->endpoint.stats().payload_bytes_for_me;
     snapshot_ = s;
@@ -190,15 +194,13 @@ class Bench {
   RadioBenchConfig config_;
   Nanos generation_end_;
   Nanos hard_end_;
-  SharedChannel channel_;
-  SimLink server_link_;
-  MasterScheduler server_;
+  radio::MasterScheduler server_;
+  radio::ChannelLoop loop_;  // after server_, which its master step uses
   std::mt19937_64 report_rng_;
   std::vector<std::unique_ptr<BenchVehicle>> fleet_;
   internal::Metrics metrics_;
   std::optional<internal::Snapshot> snapshot_;
   Nanos next_sample_{0};
-  std::vector<std::uint8_t> received_;
 };
 
 }  // namespace
@@ -221,8 +223,8 @@ void RadioBenchConfig::Validate() const {
   if (!(std::isfinite(telemetry_hz) && telemetry_hz > 0.0)) {
     ThrowConfig("telemetry_hz", "> 0", telemetry_hz);
   }
-  if (mission_waypoints < 0 || std::cmp_greater(mission_waypoints, kMaxMissionWaypoints)) {
-    ThrowConfig("mission_waypoints", "in 0.." + std::to_string(kMaxMissionWaypoints),
+  if (mission_waypoints < 0 || std::cmp_greater(mission_waypoints, radio::kMaxMissionWaypoints)) {
+    ThrowConfig("mission_waypoints", "in 0.." + std::to_string(radio::kMaxMissionWaypoints),
                 mission_waypoints);
   }
 }
@@ -234,4 +236,4 @@ RadioBenchResult RunRadioBench(const RadioBenchConfig& config, const AirObserver
   return bench.Run();
 }
 
-}  // namespace fireswarm::radio
+}  // namespace fireswarm::bench

@@ -9,21 +9,22 @@
 #include <optional>
 #include <vector>
 
+#include "fireswarm/common/time.hpp"
 #include "fireswarm/radio/channel.hpp"
 #include "fireswarm/radio/discipline.hpp"
 #include "fireswarm/radio/frame.hpp"
 #include "fireswarm/radio/time.hpp"
 
-namespace fireswarm::radio {
+namespace fireswarm::bench {
 
 struct RadioBenchConfig {
   int vehicles = 10;            ///< 1..254, receiver IDs 1..N
   double seconds = 60.0;        ///< simulated seconds during which reports are generated
   double drain_seconds = 30.0;  ///< at most this long afterwards for queued reports
-  LinkMode mode = LinkMode::kSlots;
-  ChecksumMode checksum = ChecksumMode::kCrc16;
+  radio::LinkMode mode = radio::LinkMode::kSlots;
+  radio::ChecksumMode checksum = radio::ChecksumMode::kCrc16;
   int baud = 57'600;  ///< bits/s, 8N1
-  Nanos turnaround{std::chrono::milliseconds(5)};
+  common::Nanos turnaround{std::chrono::milliseconds(5)};
   double loss = 0.0;                ///< per reception, [0, 1)
   double bit_error_rate = 0.0;      ///< per received bit, [0, 1)
   double reports_per_minute = 2.0;  ///< fire reports per vehicle per minute (Poisson)
@@ -79,9 +80,9 @@ struct RadioBenchResult {
 
 /// Called once per transmission as the channel resolves it (a capture of the air).
 /// Radio 0 is the server; radio i is the vehicle with receiver ID i.
-using AirObserver = std::function<void(const AirRecord&)>;
+using AirObserver = std::function<void(const radio::AirRecord&)>;
 
 /// Runs the bench. Throws std::invalid_argument for an invalid configuration.
 RadioBenchResult RunRadioBench(const RadioBenchConfig& config, const AirObserver& observer = {});
 
-}  // namespace fireswarm::radio
+}  // namespace fireswarm::bench

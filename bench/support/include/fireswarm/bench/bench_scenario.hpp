@@ -10,7 +10,7 @@
 #include "fireswarm/sim2d/lane_pilot.hpp"
 #include "fireswarm/sim2d/simulation.hpp"
 
-namespace fireswarm::sim2d {
+namespace fireswarm::bench {
 
 struct BenchScenarioSpec {
   int drones = 100;
@@ -27,8 +27,8 @@ struct BenchScenarioSpec {
 };
 
 struct BenchScenario {
-  SimulationConfig config;
-  std::vector<LanePilot> pilots;  ///< one per vehicle, in the world's vehicle order
+  sim2d::SimulationConfig config;
+  std::vector<sim2d::LanePilot> pilots;  ///< one per vehicle, in the world's vehicle order
 };
 
 /// Each vehicle gets an equal north-south strip of the square and sweeps it in
@@ -36,4 +36,4 @@ struct BenchScenario {
 /// per strip, and lane altitudes are staggered in four 5 m layers.
 BenchScenario MakeBenchScenario(const BenchScenarioSpec& spec);
 
-}  // namespace fireswarm::sim2d
+}  // namespace fireswarm::bench

@@ -1,11 +1,13 @@
 // The link targets, asserted on simulated figures (simulated time, so no
 // wall-clock flakiness): 50 vehicles at 57,600 baud with a 5 ms turnaround.
-#include "fireswarm/radio/radio_bench.hpp"
+#include "fireswarm/bench/radio_bench.hpp"
 
 #include <gtest/gtest.h>
 
-namespace fireswarm::radio {
+namespace fireswarm::bench {
 namespace {
+
+using radio::LinkMode;
 
 constexpr int kFleet = 50;
 constexpr double kSeconds = 60.0;
@@ -100,4 +102,4 @@ TEST(RadioBench, RejectsBadConfiguration) {
 }
 
 }  // namespace
-}  // namespace fireswarm::radio
+}  // namespace fireswarm::bench
