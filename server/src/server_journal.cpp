@@ -164,7 +164,7 @@ Server Server::Restore(const ServerConfig& config, const common::LocalFrame& fra
       } else if (entry.kind == "reject") {
         server.fusion_.Reject(data.at("track_id").get<std::int32_t>());
       } else if (entry.kind == "investigation") {
-        server.investigations_.push_back(InvestigationFrom(entry));
+        server.investigations_.Restore(InvestigationFrom(entry));
       } else if (entry.kind == "investigate_order") {
         // The order itself is carried out by its "investigation" entry.
       } else if (entry.kind == "recall") {
