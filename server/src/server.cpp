@@ -13,7 +13,6 @@
 #include <variant>
 
 #include "local_point.hpp"
-#include "server_journal_json.hpp"
 
 namespace fireswarm::server {
 
@@ -119,23 +118,20 @@ void Server::AddVehicle(int receiver_id, double now_s) {
   const auto index = static_cast<double>(registry_.size() - 1);
   scheduler_->AddVehicle(static_cast<std::uint8_t>(receiver_id), config_.telemetry_hz,
                          radio::FromSeconds(index * 0.05));
-  Record(now_s, "vehicle", {{"id", receiver_id}});
+  Record(now_s, VehicleAdded{receiver_id});
 }
 
 void Server::LoadMission(std::vector<DroneMission> missions, double now_s) {
   if (mission_) throw std::invalid_argument("a mission is already loaded");
-  nlohmann::json drones = nlohmann::json::array();
   for (const DroneMission& m : missions) {
     if (!registry_.Contains(m.vehicle)) {
       throw std::invalid_argument("mission for vehicle " + std::to_string(m.vehicle) +
                                   ", which is not registered");
     }
-    drones.push_back({{"vehicle", m.vehicle},
-                      {"mission_id", m.mission_id},
-                      {"waypoints", WaypointsJson(m.waypoints)}});
   }
+  MissionLoaded loaded{missions};
   mission_.emplace(*scheduler_, std::move(missions), config_.mission);
-  Record(now_s, "mission", {{"drones", std::move(drones)}});
+  Record(now_s, std::move(loaded));
 }
 
 bool Server::Handle(const OperatorCommand& command, radio::Nanos now, std::string* why) {
@@ -144,11 +140,7 @@ bool Server::Handle(const OperatorCommand& command, radio::Nanos now, std::strin
     if (why != nullptr) *why = std::move(reason);
     return false;
   };
-  const nlohmann::json record = {{"command", static_cast<int>(command.kind)},
-                                 {"vehicle", command.vehicle},
-                                 {"lat_deg", command.point.lat_deg},
-                                 {"lon_deg", command.point.lon_deg},
-                                 {"reason", command.reason}};
+  const CommandAccepted record{command.kind, command.vehicle, command.point, command.reason};
   using Kind = OperatorCommand::Kind;
   switch (command.kind) {
     case Kind::kStart:
@@ -157,17 +149,17 @@ bool Server::Handle(const OperatorCommand& command, radio::Nanos now, std::strin
       mission_->Begin();
       mission_started_s_ = now_s;
       state_ = MissionState::kUploading;
-      Record(now_s, "start", record);
+      Record(now_s, record);
       return true;
     case Kind::kAbort:
       SendToAll(radio::CommandType::kAbort);
       state_ = MissionState::kAborted;
-      Record(now_s, "abort", record);
+      Record(now_s, record);
       return true;
     case Kind::kReturnAll:
       SendToAll(radio::CommandType::kReturnToLaunch);
       if (state_ != MissionState::kAborted) state_ = MissionState::kReturning;
-      Record(now_s, "return_all", record);
+      Record(now_s, record);
       return true;
     case Kind::kInvestigatePoint:
     case Kind::kRetaskVehicle: {
@@ -195,7 +187,7 @@ bool Server::Handle(const OperatorCommand& command, radio::Nanos now, std::strin
             investigations_.BestPlacedFor(registry_, point_ne_m, radius_m, 0, now_s, &why_none);
         if (!vehicle) return refuse(why_none);
       }
-      Record(now_s, "investigate_order", record);
+      Record(now_s, record);
       Investigate(*vehicle, command.point, command.radius_m, 0, now_s);
       return true;
     }
@@ -214,12 +206,8 @@ void Server::Investigate(std::uint8_t vehicle, common::LatLon point, double radi
   const InvestigationOrder order =
       investigations_.Open(registry_, vehicle, point, radius_m, track_id, now_s);
   scheduler_->SendCommand(vehicle, order.command);
-  const Eigen::Vector2d& point_ne_m = order.investigation.point_ne_m;
-  Record(now_s, "investigation",
-         {{"vehicle", vehicle},
-          {"track_id", track_id},
-          {"until_s", order.investigation.until_s},
-          {"point_ne_m", {point_ne_m.x(), point_ne_m.y()}}});
+  Record(now_s, InvestigationOpened{vehicle, track_id, order.investigation.until_s,
+                                    order.investigation.point_ne_m});
 }
 
 std::vector<radio::Burst> Server::Step(radio::Nanos now, std::span<const std::uint8_t> received) {
@@ -267,7 +255,7 @@ void Server::OnEvent(const radio::SchedulerEvent& event, double now_s) {
     const auto journaled = journaled_phases_.find(id);
     if (journaled != journaled_phases_.end() && journaled->second == phase) continue;
     journaled_phases_[id] = phase;
-    Record(now_s, "phase", {{"vehicle", id}, {"phase", static_cast<int>(phase)}});
+    Record(now_s, PhaseChanged{id, phase});
   }
 }
 
@@ -286,7 +274,7 @@ void Server::OnFireReport(const radio::FireReportReceived& received, double now_
       result.outcome == FireReportOutcome::kInvalid) {
     return;
   }
-  Record(now_s, "report", ObservationJson(observation));
+  Record(now_s, ReportFused{observation});
   AfterFusion(observation, result, now_s);
 }
 
@@ -316,7 +304,7 @@ void Server::AfterFusion(const FireObservation& observation, const FireReportRes
                                             observation.vehicle_id, now_s, &why_none);
   }
   if (!vehicle) {
-    Record(now_s, "no_investigation", {{"track_id", result.track_id}, {"why", why_none}});
+    Record(now_s, InvestigationNotSent{result.track_id, why_none});
     return;
   }
   const common::LatLon point =
@@ -327,8 +315,7 @@ void Server::AfterFusion(const FireObservation& observation, const FireReportRes
 void Server::CheckInvestigations(radio::Nanos now) {
   const double now_s = Seconds(now);
   for (const Rejection& rejection : investigations_.Judge(now, fusion_)) {
-    Record(now_s, "reject",
-           {{"track_id", rejection.track_id}, {"by_vehicle", rejection.by_vehicle}});
+    Record(now_s, TrackRejected{rejection.track_id, rejection.by_vehicle});
   }
 }
 
@@ -347,7 +334,7 @@ void Server::UpdateState(double now_s) {
   }
   if (next != state_) {
     state_ = next;
-    Record(now_s, "state", {{"state", static_cast<int>(state_)}});
+    Record(now_s, MissionStateChanged{state_});
   }
 }
 

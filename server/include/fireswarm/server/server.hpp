@@ -2,7 +2,7 @@
 // the mission (uploads, starts, progress), fire fusion and re-tasking, in one
 // pure class. `Step(now, received bytes) -> bursts`; no clock, socket, file or
 // LCM. What must survive a restart comes out as journal entries for an adapter
-// to append (journal.hpp), and Server::Restore rebuilds the core from them.
+// to append (journal_format.hpp), and Server::Restore rebuilds the core from them.
 //
 // Re-tasking: when a report opens a new tentative track, a vehicle is sent to
 // loiter around it (seed 7.4) for investigate_s (after its transit there) and
@@ -23,7 +23,6 @@
 #include <limits>
 #include <map>
 #include <memory>
-#include <nlohmann/json.hpp>
 #include <optional>
 #include <span>
 #include <string>
@@ -36,7 +35,10 @@
 #include "fireswarm/server/fire_fusion.hpp"
 #include "fireswarm/server/handover.hpp"
 #include "fireswarm/server/investigations.hpp"
+#include "fireswarm/server/journal_entry.hpp"
 #include "fireswarm/server/mission_manager.hpp"
+#include "fireswarm/server/mission_state.hpp"
+#include "fireswarm/server/operator_command.hpp"
 #include "fireswarm/server/vehicle_registry.hpp"
 
 namespace fireswarm::server {
@@ -75,40 +77,6 @@ struct ServerConfig {
   void Validate() const;
 };
 
-/// An operator's order (lcmtypes/operator_command_t.lcm's commands).
-struct OperatorCommand {
-  enum class Kind : std::uint8_t {
-    kStart = 1,
-    kAbort = 2,
-    kReturnAll = 3,
-    kInvestigatePoint = 4,
-    kRetaskVehicle = 5,
-  };
-  Kind kind = Kind::kStart;
-  std::uint8_t vehicle = 0;  ///< kRetaskVehicle (required), kInvestigatePoint (0 = server chooses)
-  common::LatLon point;      ///< kInvestigatePoint, kRetaskVehicle
-  double radius_m = 0.0;     ///< 0 = the configured radius
-  std::string reason;        ///< for the journal
-};
-
-enum class MissionState : std::int8_t {  // mission_status_t's STATE_* values
-  kIdle = 0,
-  kUploading = 1,
-  kRunning = 2,
-  kReturning = 3,
-  kComplete = 4,
-  kAborted = 5,
-};
-const char* ToString(MissionState state);
-
-/// One thing that must survive a restart: appended by the journal adapter as
-/// (time, kind, data), handed back to Server::Restore in the same order.
-struct JournalEntry {
-  double t_s = 0.0;
-  std::string kind;
-  nlohmann::json data;
-};
-
 class Server {
  public:
   /// `frame`: the local frame fire positions are fused in (the mission area's).
@@ -140,8 +108,9 @@ class Server {
   /// fire report (tracks come back with their IDs) and rejection. The radio's
   /// sequence numbers restart half their range away from the last journaled one
   /// (every entry records it), so no vehicle mistakes a new request for a resend
-  /// of the last one it answered. Throws
-  /// std::runtime_error naming the entry (its index and kind) when one is malformed.
+  /// of the last one it answered. Throws std::runtime_error naming the entry (its
+  /// index and kind) when one does not fit the ones before (a phase before any
+  /// mission, an unknown vehicle).
   static Server Restore(const ServerConfig& config, const common::LocalFrame& frame,
                         const std::vector<JournalEntry>& entries);
 
@@ -175,7 +144,8 @@ class Server {
   std::vector<Taker> TakersFor(std::uint8_t lost, double now_s) const;
   void CheckInvestigations(radio::Nanos now);
   void UpdateState(double now_s);
-  void Record(double t_s, std::string kind, nlohmann::json data);
+  void Record(double t_s, JournalEvent event);
+  void Replay(const JournalEntry& entry);
 
   ServerConfig config_;
   common::LocalFrame frame_;
