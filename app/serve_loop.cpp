@@ -192,7 +192,7 @@ nlohmann::ordered_json ServeLoop::Summary() const {
   nlohmann::ordered_json tracks = nlohmann::ordered_json::array();
   for (const server::FireTrack& track : server_.fusion().tracks()) {
     const common::LatLon at =
-        server_.frame().ToGeodetic({track.position_ne_m.y(), track.position_ne_m.x()});
+        server_.frame().ToGeodetic({track.position_en_m.x(), track.position_en_m.y()});
     tracks.push_back({{"id", track.track_id},
                       {"status", std::string(server::ToString(track.status))},
                       {"lat_deg", at.lat_deg},

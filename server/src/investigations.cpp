@@ -56,11 +56,11 @@ double Investigations::RadiusM(double ordered_radius_m) const {
   return config_.investigate_radius_m > 0.0 ? config_.investigate_radius_m : kVehicleLoiterRadiusM;
 }
 
-std::optional<std::string> Investigations::CircleRefusal(const Eigen::Vector2d& point_ne_m,
+std::optional<std::string> Investigations::CircleRefusal(const Eigen::Vector2d& point_en_m,
                                                          double radius_m) const {
   if (transit_ == nullptr) return std::nullopt;
-  if (transit_->IsInside(PlannerPoint(point_ne_m))) return "the point is inside a no-fly zone";
-  if (!transit_->IsCircleClear(PlannerPoint(point_ne_m), radius_m)) {
+  if (transit_->IsInside(PlannerPoint(point_en_m))) return "the point is inside a no-fly zone";
+  if (!transit_->IsCircleClear(PlannerPoint(point_en_m), radius_m)) {
     return "the " + Metres(radius_m) + " circle around the point enters a no-fly zone";
   }
   return std::nullopt;
@@ -68,7 +68,7 @@ std::optional<std::string> Investigations::CircleRefusal(const Eigen::Vector2d& 
 
 std::optional<std::string> Investigations::ApproachRefusal(const VehicleRegistry& registry,
                                                            std::uint8_t vehicle,
-                                                           const Eigen::Vector2d& point_ne_m,
+                                                           const Eigen::Vector2d& point_en_m,
                                                            double radius_m) const {
   if (transit_ == nullptr) return std::nullopt;
   const std::string name = "vehicle " + std::to_string(vehicle);
@@ -76,9 +76,9 @@ std::optional<std::string> Investigations::ApproachRefusal(const VehicleRegistry
   if (!telemetry) {
     return name + " has sent no position: its approach cannot be checked against the no-fly zones";
   }
-  const Eigen::Vector2d from_ne_m = NorthEast(frame_, {telemetry->lat_deg, telemetry->lon_deg});
+  const Eigen::Vector2d from_en_m = LocalM(frame_, {telemetry->lat_deg, telemetry->lon_deg});
   const planner::Polygon hull =
-      InvestigationHull(PlannerPoint(from_ne_m), PlannerPoint(point_ne_m), radius_m);
+      InvestigationHull(PlannerPoint(from_en_m), PlannerPoint(point_en_m), radius_m);
   if (boost::geometry::intersects(hull, config_.no_fly)) {
     return name + "'s straight way to the circle or back to its lane crosses a no-fly zone";
   }
@@ -86,7 +86,7 @@ std::optional<std::string> Investigations::ApproachRefusal(const VehicleRegistry
 }
 
 std::optional<std::uint8_t> Investigations::BestPlacedFor(const VehicleRegistry& registry,
-                                                          const Eigen::Vector2d& point_ne_m,
+                                                          const Eigen::Vector2d& point_en_m,
                                                           double radius_m, std::uint8_t reporter,
                                                           double now_s,
                                                           std::string* why_none) const {
@@ -103,12 +103,12 @@ std::optional<std::uint8_t> Investigations::BestPlacedFor(const VehicleRegistry&
       return i.vehicle == id && i.until_s > now_s;
     });
     if (busy) continue;
-    if (ApproachRefusal(registry, id, point_ne_m, radius_m)) {
+    if (ApproachRefusal(registry, id, point_en_m, radius_m)) {
       ++blocked;
       continue;
     }
     const double distance_m =
-        (NorthEast(frame_, {vehicle.telemetry->lat_deg, vehicle.telemetry->lon_deg}) - point_ne_m)
+        (LocalM(frame_, {vehicle.telemetry->lat_deg, vehicle.telemetry->lon_deg}) - point_en_m)
             .norm();
     const bool is_reporter = id == reporter;
     // Another vehicle than the reporter wins: its view is independent.
@@ -131,11 +131,11 @@ std::optional<std::uint8_t> Investigations::BestPlacedFor(const VehicleRegistry&
 InvestigationOrder Investigations::Open(const VehicleRegistry& registry, std::uint8_t vehicle,
                                         common::LatLon point, double radius_m,
                                         std::int32_t track_id, double now_s) {
-  const Eigen::Vector2d point_ne_m = NorthEast(frame_, point);
+  const Eigen::Vector2d point_en_m = LocalM(frame_, point);
   // The vehicle counts the duration from the order: add its transit to the point.
   double transit_s = 0.0;
   if (const std::optional<radio::Telemetry>& t = registry.state(vehicle).telemetry) {
-    transit_s = (NorthEast(frame_, {t->lat_deg, t->lon_deg}) - point_ne_m).norm() /
+    transit_s = (LocalM(frame_, {t->lat_deg, t->lon_deg}) - point_en_m).norm() /
                 config_.investigate_transit_mps;
   }
   const double duration_s = std::min(kMaxInvestigateS, transit_s + config_.investigate_s);
@@ -149,7 +149,7 @@ InvestigationOrder Investigations::Open(const VehicleRegistry& registry, std::ui
   order.investigation.track_id = track_id;
   order.investigation.started_s = now_s;
   order.investigation.until_s = now_s + order.command.duration_s;
-  order.investigation.point_ne_m = point_ne_m;
+  order.investigation.point_en_m = point_en_m;
   investigations_.push_back(order.investigation);
   return order;
 }
@@ -158,11 +158,11 @@ void Investigations::Restore(const Investigation& investigation) {
   investigations_.push_back(investigation);
 }
 
-void Investigations::OnPosition(std::uint8_t vehicle, const Eigen::Vector2d& where_ne_m,
+void Investigations::OnPosition(std::uint8_t vehicle, const Eigen::Vector2d& where_en_m,
                                 double now_s) {
   for (Investigation& i : investigations_) {
     if (i.vehicle != vehicle || i.judged || now_s > i.until_s) continue;
-    i.closest_m = std::min(i.closest_m, (where_ne_m - i.point_ne_m).norm());
+    i.closest_m = std::min(i.closest_m, (where_en_m - i.point_en_m).norm());
   }
 }
 

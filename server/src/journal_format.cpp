@@ -7,6 +7,8 @@
 #include <utility>
 #include <vector>
 
+#include "fireswarm/server/north_east.hpp"
+
 namespace fireswarm::server {
 
 namespace {
@@ -62,22 +64,23 @@ std::vector<DroneMission> MissionsFrom(const nlohmann::json& drones) {
   return missions;
 }
 
-nlohmann::json PairJson(const Eigen::Vector2d& v) {
-  return {v.x(), v.y()};
+// A local (east, north) vector as the file's [north, east] pair, and back.
+nlohmann::json NorthEastJson(const Eigen::Vector2d& en_m) {
+  const Eigen::Vector2d ne_m = SwapAxes(en_m);
+  return {ne_m.x(), ne_m.y()};
 }
 
-Eigen::Vector2d PairFrom(const nlohmann::json& pair) {
-  return {pair.at(0).get<double>(), pair.at(1).get<double>()};
+Eigen::Vector2d FromNorthEast(const nlohmann::json& pair) {
+  return SwapAxes(Eigen::Vector2d(pair.at(0).get<double>(), pair.at(1).get<double>()));
 }
 
 nlohmann::json ObservationJson(const FireObservation& o) {
   return {{"vehicle", o.vehicle_id},
           {"report_id", o.report_id},
           {"detection_s", o.detection_time_s},
-          {"position_ne_m", PairJson(o.position_ne_m)},
-          {"covariance_ne_m2",
-           {o.covariance_ne_m2(0, 0), o.covariance_ne_m2(0, 1), o.covariance_ne_m2(1, 1)}},
-          {"observer_ne_m", PairJson(o.observer_ne_m)},
+          {"position_ne_m", NorthEastJson(o.position_en_m)},
+          {"covariance_ne_m2", NorthEastTriangle(o.covariance_en_m2)},
+          {"observer_ne_m", NorthEastJson(o.observer_en_m)},
           {"confidence", o.confidence}};
 }
 
@@ -86,11 +89,13 @@ FireObservation ObservationFrom(const nlohmann::json& j) {
   o.vehicle_id = j.at("vehicle").get<std::uint8_t>();
   o.report_id = j.at("report_id").get<std::uint16_t>();
   o.detection_time_s = j.at("detection_s").get<double>();
-  o.position_ne_m = PairFrom(j.at("position_ne_m"));
+  o.position_en_m = FromNorthEast(j.at("position_ne_m"));
   const nlohmann::json& c = j.at("covariance_ne_m2");
-  o.covariance_ne_m2 << c.at(0).get<double>(), c.at(1).get<double>(), c.at(1).get<double>(),
+  Eigen::Matrix2d covariance_ne_m2;
+  covariance_ne_m2 << c.at(0).get<double>(), c.at(1).get<double>(), c.at(1).get<double>(),
       c.at(2).get<double>();
-  o.observer_ne_m = PairFrom(j.at("observer_ne_m"));
+  o.covariance_en_m2 = SwapAxes(covariance_ne_m2);
+  o.observer_en_m = FromNorthEast(j.at("observer_ne_m"));
   o.confidence = j.at("confidence").get<double>();
   return o;
 }
@@ -153,9 +158,9 @@ JournalEvent EventFrom(const std::string& kind, const nlohmann::json& data) {
                          data.at("by_vehicle").get<std::uint8_t>()};
   }
   if (kind == "investigation") {
-    return InvestigationOpened{data.at("vehicle").get<std::uint8_t>(),
-                               data.at("track_id").get<std::int32_t>(),
-                               data.at("until_s").get<double>(), PairFrom(data.at("point_ne_m"))};
+    return InvestigationOpened{
+        data.at("vehicle").get<std::uint8_t>(), data.at("track_id").get<std::int32_t>(),
+        data.at("until_s").get<double>(), FromNorthEast(data.at("point_ne_m"))};
   }
   if (kind == "no_investigation") {
     return InvestigationNotSent{data.at("track_id").get<std::int32_t>(),
@@ -222,7 +227,7 @@ nlohmann::json JournalDataOf(const JournalEntry& entry) {
             return {{"vehicle", e.vehicle},
                     {"track_id", e.track_id},
                     {"until_s", e.until_s},
-                    {"point_ne_m", PairJson(e.point_ne_m)}};
+                    {"point_ne_m", NorthEastJson(e.point_en_m)}};
           },
           [](const InvestigationNotSent& e) -> nlohmann::json {
             return {{"track_id", e.track_id}, {"why", e.why}};

@@ -170,21 +170,21 @@ bool Server::Handle(const OperatorCommand& command, radio::Nanos now, std::strin
       if (command.vehicle == 0 && command.kind == Kind::kRetaskVehicle) {
         return refuse("re-task needs a vehicle");
       }
-      const Eigen::Vector2d point_ne_m = NorthEast(frame_, command.point);
+      const Eigen::Vector2d point_en_m = LocalM(frame_, command.point);
       const double radius_m = investigations_.RadiusM(command.radius_m);
-      if (std::optional<std::string> no = investigations_.CircleRefusal(point_ne_m, radius_m)) {
+      if (std::optional<std::string> no = investigations_.CircleRefusal(point_en_m, radius_m)) {
         return refuse(*no);
       }
       std::optional<std::uint8_t> vehicle;
       if (command.vehicle != 0) {
         std::optional<std::string> no =
-            investigations_.ApproachRefusal(registry_, command.vehicle, point_ne_m, radius_m);
+            investigations_.ApproachRefusal(registry_, command.vehicle, point_en_m, radius_m);
         if (no) return refuse(*no);
         vehicle = command.vehicle;
       } else {
         std::string why_none;
         vehicle =
-            investigations_.BestPlacedFor(registry_, point_ne_m, radius_m, 0, now_s, &why_none);
+            investigations_.BestPlacedFor(registry_, point_en_m, radius_m, 0, now_s, &why_none);
         if (!vehicle) return refuse(why_none);
       }
       Record(now_s, record);
@@ -207,7 +207,7 @@ void Server::Investigate(std::uint8_t vehicle, common::LatLon point, double radi
       investigations_.Open(registry_, vehicle, point, radius_m, track_id, now_s);
   scheduler_->SendCommand(vehicle, order.command);
   Record(now_s, InvestigationOpened{vehicle, track_id, order.investigation.until_s,
-                                    order.investigation.point_ne_m});
+                                    order.investigation.point_en_m});
 }
 
 std::vector<radio::Burst> Server::Step(radio::Nanos now, std::span<const std::uint8_t> received) {
@@ -234,7 +234,7 @@ void Server::OnEvent(const radio::SchedulerEvent& event, double now_s) {
   if (const auto* telemetry = std::get_if<radio::TelemetryReceived>(&event)) {
     registry_.OnTelemetry(telemetry->telemetry, now_s);
     const Eigen::Vector2d where =
-        NorthEast(frame_, {telemetry->telemetry.lat_deg, telemetry->telemetry.lon_deg});
+        LocalM(frame_, {telemetry->telemetry.lat_deg, telemetry->telemetry.lon_deg});
     investigations_.OnPosition(telemetry->vehicle, where, now_s);
     clock_offset_s_[telemetry->vehicle] =
         now_s - static_cast<double>(telemetry->telemetry.time_ms) / kMillisPerSecond;
@@ -297,18 +297,17 @@ void Server::AfterFusion(const FireObservation& observation, const FireReportRes
   std::string why_none;
   std::optional<std::uint8_t> vehicle;
   if (std::optional<std::string> no =
-          investigations_.CircleRefusal(track->position_ne_m, radius_m)) {
+          investigations_.CircleRefusal(track->position_en_m, radius_m)) {
     why_none = std::move(*no);
   } else {
-    vehicle = investigations_.BestPlacedFor(registry_, track->position_ne_m, radius_m,
+    vehicle = investigations_.BestPlacedFor(registry_, track->position_en_m, radius_m,
                                             observation.vehicle_id, now_s, &why_none);
   }
   if (!vehicle) {
     Record(now_s, InvestigationNotSent{result.track_id, why_none});
     return;
   }
-  const common::LatLon point =
-      frame_.ToGeodetic({track->position_ne_m.y(), track->position_ne_m.x()});
+  const common::LatLon point = Geodetic(frame_, track->position_en_m);
   Investigate(*vehicle, point, 0.0, result.track_id, now_s);
 }
 

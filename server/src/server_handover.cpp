@@ -7,6 +7,7 @@
 
 #include "fireswarm/server/handover.hpp"
 #include "fireswarm/server/server.hpp"
+#include "local_point.hpp"
 
 namespace fireswarm::server {
 
@@ -32,8 +33,7 @@ std::vector<Taker> Server::TakersFor(std::uint8_t lost, double now_s) const {
     }
     Taker taker;
     taker.vehicle = id;
-    const common::EastNorth here = frame_.ToLocal({telemetry->lat_deg, telemetry->lon_deg});
-    taker.position_ne_m = Eigen::Vector2d(here.north_m, here.east_m);
+    taker.position_en_m = LocalM(frame_, {telemetry->lat_deg, telemetry->lon_deg});
     taker.remaining = mission_->Remaining(id, /*from_leg_start=*/false);
     const std::vector<radio::Waypoint>& own = mission_->mission_of(id).waypoints;
     taker.altitude_m = own.empty() ? telemetry->altitude_m : own.front().altitude_m;

@@ -44,7 +44,7 @@ Investigation InvestigationFrom(const InvestigationOpened& opened, double starte
   i.track_id = opened.track_id;
   i.started_s = started_s;
   i.until_s = opened.until_s;
-  i.point_ne_m = opened.point_ne_m;
+  i.point_en_m = opened.point_en_m;
   return i;
 }
 

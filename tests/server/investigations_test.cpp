@@ -31,8 +31,8 @@ radio::Telemetry At(std::uint8_t id, double east_m, double north_m,
   return telemetry;
 }
 
-Eigen::Vector2d NorthEastOf(double east_m, double north_m) {
-  return {north_m, east_m};
+Eigen::Vector2d Local(double east_m, double north_m) {
+  return {east_m, north_m};
 }
 
 // The square [west, east] x [south, north] of local metres as a no-fly zone.
@@ -76,22 +76,21 @@ std::int32_t TrackAt(FireFusion& fusion, double east_m, double north_m, std::uin
   o.vehicle_id = vehicle;
   o.report_id = report_id;
   o.detection_time_s = time_s;
-  o.position_ne_m = NorthEastOf(east_m, north_m);
-  o.covariance_ne_m2 = Eigen::Matrix2d::Identity() * 9.0;
-  o.observer_ne_m = NorthEastOf(east_m, north_m - 20.0);
+  o.position_en_m = Local(east_m, north_m);
+  o.covariance_en_m2 = Eigen::Matrix2d::Identity() * 9.0;
+  o.observer_en_m = Local(east_m, north_m - 20.0);
   o.confidence = 0.9;
   return fusion.Add(o).track_id;
 }
 
 TEST(Investigations, ChoosesTheNearestSearchingVehicleOtherThanTheReporter) {
   Fixture f;
-  const Eigen::Vector2d fire = NorthEastOf(150.0, 0.0);
+  const Eigen::Vector2d fire = Local(150.0, 0.0);
   // 1 is as near as 2, but it reported the fire: 2's view is independent.
   EXPECT_EQ(f.investigations->BestPlacedFor(f.registry, fire, 20.0, 1, 2.0, nullptr), 2);
   // Reported by someone else: the nearest wins.
-  EXPECT_EQ(
-      f.investigations->BestPlacedFor(f.registry, NorthEastOf(1'900.0, 0.0), 20.0, 1, 2.0, nullptr),
-      3);
+  EXPECT_EQ(f.investigations->BestPlacedFor(f.registry, Local(1'900.0, 0.0), 20.0, 1, 2.0, nullptr),
+            3);
   // Only the reporter can go: it goes.
   f.registry.OnTelemetry(At(2, 300.0, 0.0, radio::FlightMode::kReturnToLaunch), 2.0);
   f.registry.OnTelemetry(At(3, 2'000.0, 0.0, radio::FlightMode::kLand), 2.0);
@@ -102,15 +101,13 @@ TEST(Investigations, PassesOverBusyAndNonSearchingVehiclesAndSaysWhyNoneIsLeft) 
   Fixture f;
   const common::LatLon point = kFrame.ToGeodetic({150.0, 0.0});
   f.investigations->Open(f.registry, 2, point, 0.0, 7, 2.0);
-  EXPECT_EQ(
-      f.investigations->BestPlacedFor(f.registry, NorthEastOf(150.0, 0.0), 20.0, 0, 3.0, nullptr),
-      1);
+  EXPECT_EQ(f.investigations->BestPlacedFor(f.registry, Local(150.0, 0.0), 20.0, 0, 3.0, nullptr),
+            1);
   f.registry.OnTelemetry(At(1, 0.0, 0.0, radio::FlightMode::kInvestigate), 3.0);
   f.registry.OnTelemetry(At(3, 2'000.0, 0.0, radio::FlightMode::kHold), 3.0);
   std::string why;
-  EXPECT_EQ(
-      f.investigations->BestPlacedFor(f.registry, NorthEastOf(150.0, 0.0), 20.0, 0, 3.0, &why),
-      std::nullopt);
+  EXPECT_EQ(f.investigations->BestPlacedFor(f.registry, Local(150.0, 0.0), 20.0, 0, 3.0, &why),
+            std::nullopt);
   EXPECT_EQ(why, "no searching vehicle with a working link");
 }
 
@@ -124,26 +121,26 @@ TEST(Investigations, OpenCountsTheTransitToThePointInTheOrder) {
   EXPECT_EQ(order.command.radius_m, 25.0);
   EXPECT_EQ(order.investigation.until_s, 320.0);
   EXPECT_EQ(order.investigation.track_id, 4);
-  EXPECT_NEAR(order.investigation.point_ne_m.norm(), 0.0, 1e-6);
+  EXPECT_NEAR(order.investigation.point_en_m.norm(), 0.0, 1e-6);
   ASSERT_EQ(f.investigations->all().size(), 1U);
   EXPECT_EQ(f.investigations->all()[0].vehicle, 3);
 }
 
 TEST(Investigations, RefusesACircleInOrEnteringANoFlyZone) {
   Fixture f(Zone(100.0, 100.0, 200.0, 200.0));
-  EXPECT_EQ(f.investigations->CircleRefusal(NorthEastOf(150.0, 150.0), 20.0),
+  EXPECT_EQ(f.investigations->CircleRefusal(Local(150.0, 150.0), 20.0),
             "the point is inside a no-fly zone");
-  EXPECT_EQ(f.investigations->CircleRefusal(NorthEastOf(150.0, 90.0), 20.0),
+  EXPECT_EQ(f.investigations->CircleRefusal(Local(150.0, 90.0), 20.0),
             "the 20 m circle around the point enters a no-fly zone");
-  EXPECT_EQ(f.investigations->CircleRefusal(NorthEastOf(150.0, 50.0), 20.0), std::nullopt);
+  EXPECT_EQ(f.investigations->CircleRefusal(Local(150.0, 50.0), 20.0), std::nullopt);
   Fixture open;
-  EXPECT_EQ(open.investigations->CircleRefusal(NorthEastOf(150.0, 150.0), 20.0), std::nullopt);
+  EXPECT_EQ(open.investigations->CircleRefusal(Local(150.0, 150.0), 20.0), std::nullopt);
 }
 
 TEST(Investigations, RefusesAnApproachThatCrossesANoFlyZone) {
   // A zone between vehicle 2 (300 m east) and a point 300 m north of it.
   Fixture f(Zone(250.0, 100.0, 350.0, 200.0));
-  const Eigen::Vector2d point = NorthEastOf(300.0, 300.0);
+  const Eigen::Vector2d point = Local(300.0, 300.0);
   const std::optional<std::string> no =
       f.investigations->ApproachRefusal(f.registry, 2, point, 20.0);
   ASSERT_TRUE(no.has_value());
@@ -157,9 +154,8 @@ TEST(Investigations, SaysHowManyVehiclesTheZonesBlocked) {
   // A wall east-west between every vehicle and the point.
   Fixture f(Zone(-500.0, 100.0, 2'500.0, 200.0));
   std::string why;
-  EXPECT_EQ(
-      f.investigations->BestPlacedFor(f.registry, NorthEastOf(300.0, 400.0), 20.0, 0, 2.0, &why),
-      std::nullopt);
+  EXPECT_EQ(f.investigations->BestPlacedFor(f.registry, Local(300.0, 400.0), 20.0, 0, 2.0, &why),
+            std::nullopt);
   EXPECT_THAT(why, HasSubstr("(3 would cross one)"));
 }
 
@@ -167,7 +163,7 @@ TEST(Investigations, RefusesAnApproachItCannotCheckForAVehicleNeverHeard) {
   Fixture f(Zone(100.0, 100.0, 200.0, 200.0));
   f.registry.Register(9);
   const std::optional<std::string> no =
-      f.investigations->ApproachRefusal(f.registry, 9, NorthEastOf(0.0, 500.0), 20.0);
+      f.investigations->ApproachRefusal(f.registry, 9, Local(0.0, 500.0), 20.0);
   ASSERT_TRUE(no.has_value());
   EXPECT_THAT(*no, HasSubstr("vehicle 9 has sent no position"));
 }
@@ -178,7 +174,7 @@ TEST(Investigations, RejectsATrackTheInvestigatorDidNotSeeAgain) {
   const std::int32_t track = TrackAt(fusion, 150.0, 0.0, 1, 2.0);
   const InvestigationOrder order =
       f.investigations->Open(f.registry, 2, kFrame.ToGeodetic({150.0, 0.0}), 0.0, track, 2.0);
-  f.investigations->OnPosition(2, NorthEastOf(160.0, 0.0), 30.0);  // it got there
+  f.investigations->OnPosition(2, Local(160.0, 0.0), 30.0);  // it got there
   const Nanos due = radio::FromSeconds(order.investigation.until_s + f.config.reject_grace_s);
   EXPECT_EQ(f.investigations->NextVerdict(fusion, Nanos::max()), due);
   EXPECT_TRUE(f.investigations->Judge(due - Nanos{1}, fusion).empty());
@@ -198,7 +194,7 @@ TEST(Investigations, KeepsATrackTheInvestigatorSawAgain) {
   // The reporter is the only one sent; it sees the fire again from the same
   // place soon after: not an independent view, so the track stays tentative.
   f.investigations->Open(f.registry, 1, kFrame.ToGeodetic({150.0, 0.0}), 0.0, track, 2.0);
-  f.investigations->OnPosition(1, NorthEastOf(150.0, 10.0), 10.0);
+  f.investigations->OnPosition(1, Local(150.0, 10.0), 10.0);
   TrackAt(fusion, 151.0, 0.0, 1, 12.0, 2);
   ASSERT_EQ(fusion.Find(track)->status, FireTrackStatus::kTentative);
   EXPECT_TRUE(f.investigations->Judge(radio::FromSeconds(1'000.0), fusion).empty());
@@ -211,9 +207,9 @@ TEST(Investigations, JudgesNothingWhenTheInvestigatorNeverGotNear) {
   FireFusion fusion;
   const std::int32_t track = TrackAt(fusion, 150.0, 0.0, 1, 2.0);
   f.investigations->Open(f.registry, 3, kFrame.ToGeodetic({150.0, 0.0}), 0.0, track, 2.0);
-  f.investigations->OnPosition(3, NorthEastOf(1'000.0, 0.0), 30.0);  // still far away
+  f.investigations->OnPosition(3, Local(1'000.0, 0.0), 30.0);  // still far away
   // A position after the investigation ended does not count.
-  f.investigations->OnPosition(3, NorthEastOf(150.0, 0.0), 10'000.0);
+  f.investigations->OnPosition(3, Local(150.0, 0.0), 10'000.0);
   EXPECT_TRUE(f.investigations->Judge(radio::FromSeconds(20'000.0), fusion).empty());
   EXPECT_EQ(fusion.Find(track)->status, FireTrackStatus::kTentative);
   EXPECT_TRUE(f.investigations->all()[0].judged);
@@ -236,14 +232,13 @@ TEST(Investigations, RestoresAnInvestigationAsItWasOpened) {
   saved.track_id = 3;
   saved.started_s = 5.0;
   saved.until_s = 90.0;
-  saved.point_ne_m = NorthEastOf(150.0, 0.0);
+  saved.point_en_m = Local(150.0, 0.0);
   f.investigations->Restore(saved);
   ASSERT_EQ(f.investigations->all().size(), 1U);
   EXPECT_EQ(f.investigations->all()[0].until_s, 90.0);
   // Restored, it keeps the vehicle busy like any other.
-  EXPECT_EQ(
-      f.investigations->BestPlacedFor(f.registry, NorthEastOf(150.0, 0.0), 20.0, 0, 3.0, nullptr),
-      1);
+  EXPECT_EQ(f.investigations->BestPlacedFor(f.registry, Local(150.0, 0.0), 20.0, 0, 3.0, nullptr),
+            1);
 }
 
 TEST(Investigations, RadiusIsTheOrderedThenTheConfiguredThenTheVehiclesOwn) {

@@ -31,9 +31,9 @@ FireObservation Observation() {
   o.vehicle_id = 3;
   o.report_id = 17;
   o.detection_time_s = 123.456;
-  o.position_ne_m = {12.5, -40.25};
-  o.covariance_ne_m2 << 9.0, 1.5, 1.5, 4.0;
-  o.observer_ne_m = {2.0, -60.0};
+  o.position_en_m = {12.5, -40.25};
+  o.covariance_en_m2 << 9.0, 1.5, 1.5, 4.0;
+  o.observer_en_m = {2.0, -60.0};
   o.confidence = 0.8;
   return o;
 }
@@ -78,7 +78,7 @@ TEST(JournalFormat, EveryEventComesBackAsItWasWritten) {
   EXPECT_EQ(report.observation, Observation());
   const JournalEntry opened_back = RoundTrip(entries[8]);
   const auto& opened = std::get<InvestigationOpened>(opened_back.event);
-  EXPECT_EQ(opened.point_ne_m, Eigen::Vector2d(30.0, -10.0));
+  EXPECT_EQ(opened.point_en_m, Eigen::Vector2d(30.0, -10.0));
   const JournalEntry handed_back = RoundTrip(entries[4]);
   const auto& handed = std::get<LanesHandedOver>(handed_back.event);
   EXPECT_EQ(handed.drones[0].waypoints, MissionOf(4, 2).waypoints);
@@ -92,6 +92,13 @@ TEST(JournalFormat, KeepsTheRecordNamesAndFieldsOfTheFormatBeforeTypes) {
             "return_all");
   EXPECT_EQ(JournalDataOf({0.0, 7, PhaseChanged{4, DronePhase::kFlying}}),
             nlohmann::json({{"vehicle", 4}, {"phase", 2}, {"radio_seq", 7}}));
+  // Positions and covariances stay (north, east) in the file.
+  FireObservation o = Observation();
+  o.position_en_m = {1.0, 2.0};
+  o.covariance_en_m2 << 9.0, 1.5, 1.5, 4.0;
+  const nlohmann::json report = JournalDataOf({0.0, 1, ReportFused{o}});
+  EXPECT_EQ(report.at("position_ne_m"), nlohmann::json({2.0, 1.0}));
+  EXPECT_EQ(report.at("covariance_ne_m2"), nlohmann::json({4.0, 1.5, 9.0}));
   // A hand-over whose joins were all routed says nothing of them.
   EXPECT_FALSE(
       JournalDataOf({0.0, 1, LanesHandedOver{5, "lost", {}, 0}}).contains("straight_joins"));
@@ -164,7 +171,7 @@ TEST(JournalFormat, AJournalOfTheFormatBeforeVersionsStillRestores) {
   EXPECT_EQ(track.status, FireTrackStatus::kConfirmed);
   EXPECT_EQ(track.report_count, 4);
   EXPECT_EQ(track.vehicle_ids, (std::vector<std::uint8_t>{1, 2}));
-  const common::LatLon at = frame.ToGeodetic({track.position_ne_m.y(), track.position_ne_m.x()});
+  const common::LatLon at = frame.ToGeodetic({track.position_en_m.x(), track.position_en_m.y()});
   EXPECT_NEAR(at.lat_deg, 46.50002656298229, 1e-12);
   EXPECT_NEAR(at.lon_deg, 7.502246609823232, 1e-12);
   EXPECT_EQ(server.report_receipts().size(), 4U);
@@ -175,7 +182,7 @@ TEST(JournalFormat, AJournalOfTheFormatBeforeVersionsStillRestores) {
   EXPECT_EQ(investigation.track_id, 1);
   EXPECT_EQ(investigation.started_s, 2.7644084700000002);
   EXPECT_EQ(investigation.until_s, 82.76440847);
-  EXPECT_EQ(investigation.point_ne_m, Eigen::Vector2d(1.21165584297034, 0.5894692185614455));
+  EXPECT_EQ(investigation.point_en_m, Eigen::Vector2d(0.5894692185614455, 1.21165584297034));
   // The radio starts half its sequence space after the last journaled (64).
   EXPECT_EQ(server.scheduler().next_sequence(), 64 + 0x8000);
 }

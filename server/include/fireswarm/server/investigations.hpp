@@ -59,8 +59,8 @@ struct Investigation {
   /// When the vehicle stops circling: the order's time, the transit to the circle
   /// at investigate_transit_mps, and investigate_s around it.
   double until_s = 0.0;
-  /// The point circled, local (north, east) m.
-  Eigen::Vector2d point_ne_m = Eigen::Vector2d::Zero();
+  /// The point circled, local (east, north) m.
+  Eigen::Vector2d point_en_m = Eigen::Vector2d::Zero();
   /// Closest the vehicle's telemetry came to the point during the investigation, m.
   double closest_m = std::numeric_limits<double>::infinity();
   /// The verdict on its track has been drawn (rejected, seen again, or not
@@ -90,19 +90,19 @@ class Investigations {
   /// The circle's radius, m: `ordered_radius_m` when positive, else the
   /// configured one, else the vehicle's default loiter radius (20 m).
   double RadiusM(double ordered_radius_m) const;
-  /// Why no vehicle may circle `point_ne_m` (local north, east m) at `radius_m`:
+  /// Why no vehicle may circle `point_en_m` (local east, north m) at `radius_m`:
   /// the point or the circle is in a no-fly zone. nullopt: it may.
-  std::optional<std::string> CircleRefusal(const Eigen::Vector2d& point_ne_m,
+  std::optional<std::string> CircleRefusal(const Eigen::Vector2d& point_en_m,
                                            double radius_m) const;
   /// Why `vehicle` may not be sent to that circle: its way there or back crosses
   /// a no-fly zone, or it has sent no position to check that by. nullopt: it may.
   std::optional<std::string> ApproachRefusal(const VehicleRegistry& registry, std::uint8_t vehicle,
-                                             const Eigen::Vector2d& point_ne_m,
+                                             const Eigen::Vector2d& point_en_m,
                                              double radius_m) const;
   /// The vehicle to send to the circle at `now_s` (see the file comment), or
   /// nullopt with the reason in `why_none` (when given).
   std::optional<std::uint8_t> BestPlacedFor(const VehicleRegistry& registry,
-                                            const Eigen::Vector2d& point_ne_m, double radius_m,
+                                            const Eigen::Vector2d& point_en_m, double radius_m,
                                             std::uint8_t reporter, double now_s,
                                             std::string* why_none) const;
 
@@ -115,9 +115,9 @@ class Investigations {
   /// Puts back an investigation a previous server opened (its journal), as it was opened.
   void Restore(const Investigation& investigation);
 
-  /// A vehicle's position `where_ne_m` (local north, east m) at `now_s`: how
+  /// A vehicle's position `where_en_m` (local east, north m) at `now_s`: how
   /// close its open investigations have come.
-  void OnPosition(std::uint8_t vehicle, const Eigen::Vector2d& where_ne_m, double now_s);
+  void OnPosition(std::uint8_t vehicle, const Eigen::Vector2d& where_en_m, double now_s);
   /// `track_id` was confirmed at `now_s`: its investigations still running end
   /// now. Returns their vehicles, in order, to be sent back to their lanes.
   std::vector<std::uint8_t> EndForConfirmed(std::int32_t track_id, double now_s);

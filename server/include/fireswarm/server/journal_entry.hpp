@@ -76,7 +76,7 @@ struct InvestigationOpened {
   std::uint8_t vehicle = 0;
   std::int32_t track_id = 0;                             ///< 0: an operator's point
   double until_s = 0.0;                                  ///< mission time its circling ends, s
-  Eigen::Vector2d point_ne_m = Eigen::Vector2d::Zero();  ///< local (north, east) m
+  Eigen::Vector2d point_en_m = Eigen::Vector2d::Zero();  ///< local (east, north) m
 };
 
 /// A new track got no investigator, and why (for the operator; nothing to rebuild).
