@@ -50,14 +50,12 @@ std::unique_ptr<const planner::TransitPlanner> TransitFor(const ServerConfig& co
 }
 
 InvestigationsConfig InvestigationsConfigOf(const ServerConfig& config) {
-  InvestigationsConfig of;
-  of.investigate_s = config.investigate_s;
-  of.investigate_transit_mps = config.investigate_transit_mps;
-  of.investigate_near_m = config.investigate_near_m;
-  of.investigate_radius_m = config.investigate_radius_m;
-  of.reject_grace_s = config.reject_grace_s;
-  of.no_fly = config.no_fly;
-  return of;
+  return {.investigate_s = config.investigate_s,
+          .investigate_transit_mps = config.investigate_transit_mps,
+          .investigate_near_m = config.investigate_near_m,
+          .investigate_radius_m = config.investigate_radius_m,
+          .reject_grace_s = config.reject_grace_s,
+          .no_fly = config.no_fly};
 }
 
 }  // namespace
