@@ -17,6 +17,7 @@
 #include "fireswarm/planner/area_io.hpp"
 #include "fireswarm/planner/plan.hpp"
 #include "fireswarm/server/journal.hpp"
+#include "fireswarm/server/journal_format.hpp"
 #include "fireswarm/server/lcm_bridge.hpp"
 #include "fireswarm/server/mission_manager.hpp"
 #include "fireswarm/server/server.hpp"
@@ -234,7 +235,11 @@ int RunServe(const std::vector<std::string>& args) {
   std::optional<server::Journal> journal;
   if (!f.journal.empty()) {
     journal.emplace(server::Journal::Open(f.journal, [&](const server::JournalRecord& record) {
-      entries.push_back(server::JournalEntry{record.t_s, record.kind, record.data});
+      try {
+        entries.push_back(server::JournalEntryOf(record));
+      } catch (const std::runtime_error& e) {
+        throw std::runtime_error(f.journal + ": " + e.what());
+      }
     }));
   }
   const bool resumed = !entries.empty();

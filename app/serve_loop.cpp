@@ -43,23 +43,24 @@ const char* ToString(ServeStop stop) {
 
 nlohmann::ordered_json EventLine(const server::JournalEntry& entry) {
   nlohmann::ordered_json line;
-  line["event"] = entry.kind;
+  const std::string kind = server::JournalKindOf(entry);
+  const nlohmann::json data = server::JournalDataOf(entry);
+  line["event"] = kind;
   line["t_s"] = entry.t_s;
-  const nlohmann::json& data = entry.data;
-  if (entry.kind == "phase") {
+  if (kind == "phase") {
     line["vehicle"] = data.at("vehicle");
     line["phase"] = server::ToString(static_cast<server::DronePhase>(data.at("phase").get<int>()));
-  } else if (entry.kind == "state") {
+  } else if (kind == "state") {
     line["state"] =
         server::ToString(static_cast<server::MissionState>(data.at("state").get<int>()));
-  } else if (entry.kind == "mission") {
+  } else if (kind == "mission") {
     nlohmann::ordered_json drones = nlohmann::ordered_json::array();
     for (const nlohmann::json& drone : data.at("drones")) {
       drones.push_back(
           {{"vehicle", drone.at("vehicle")}, {"waypoints", drone.at("waypoints").size()}});
     }
     line["drones"] = std::move(drones);
-  } else if (entry.kind == "report") {
+  } else if (kind == "report") {
     line["vehicle"] = data.at("vehicle");
     line["report_id"] = data.at("report_id");
   } else if (data.is_object()) {
@@ -79,7 +80,7 @@ ServeLoop::ServeLoop(server::Server& server, radio::IoLink& link, server::Journa
 void ServeLoop::FlushJournal() {
   for (const server::JournalEntry& entry : server_.TakeJournalEntries()) {
     if (journal_ != nullptr) {
-      journal_->Append(entry.t_s, entry.kind, entry.data);
+      server::AppendEntry(*journal_, entry);
       ++journal_appended_;
     }
     std::cout << EventLine(entry).dump() << std::endl;
@@ -191,7 +192,7 @@ nlohmann::ordered_json ServeLoop::Summary() const {
   nlohmann::ordered_json tracks = nlohmann::ordered_json::array();
   for (const server::FireTrack& track : server_.fusion().tracks()) {
     const common::LatLon at =
-        server_.frame().ToGeodetic({track.position_ne_m.y(), track.position_ne_m.x()});
+        server_.frame().ToGeodetic({track.position_en_m.x(), track.position_en_m.y()});
     tracks.push_back({{"id", track.track_id},
                       {"status", std::string(server::ToString(track.status))},
                       {"lat_deg", at.lat_deg},

@@ -19,6 +19,7 @@
 #include "fireswarm/radio/link.hpp"
 #include "fireswarm/radio/parser.hpp"
 #include "fireswarm/server/journal.hpp"
+#include "fireswarm/server/journal_format.hpp"
 #include "fireswarm/server/lcm_bridge.hpp"
 #include "fireswarm/server/server.hpp"
 

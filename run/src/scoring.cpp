@@ -6,6 +6,8 @@
 #include <string>
 #include <unordered_set>
 
+#include "fireswarm/server/north_east.hpp"
+
 namespace fireswarm::run::internal {
 namespace {
 
@@ -144,8 +146,7 @@ void Scorer::Observe(double t_s, const sim2d::Simulation& simulation,
     if (track.status != server::FireTrackStatus::kConfirmed) continue;
     auto it = confirmed_.find(track.track_id);
     if (it == confirmed_.end()) {
-      // Tracks are (north, east).
-      const sim2d::Vec2 position(track.position_ne_m.y(), track.position_ne_m.x());
+      const sim2d::Vec2 position = track.position_en_m;
       Confirmation confirmation;
       confirmation.t_s = t_s;
       confirmation.on_fire = OnFire(simulation.fire(), position, t_s);
@@ -216,8 +217,7 @@ void Scorer::ScoreFires(const server::Server& server, Report& report) const {
     const server::FireTrack* track = server.fusion().Find(track_id);
     if (track == nullptr) continue;
     const Confirmation& confirmation = confirmed_.at(track_id);
-    // Tracks are (north, east).
-    const sim2d::Vec2 fused_m(track->position_ne_m.y(), track->position_ne_m.x());
+    const sim2d::Vec2 fused_m = track->position_en_m;
     // The nearest fire that had started by the confirmation, where it burned.
     std::optional<std::size_t> nearest;
     double nearest_m = std::numeric_limits<double>::infinity();
@@ -257,8 +257,7 @@ void Scorer::ScoreFires(const server::Server& server, Report& report) const {
     outcome.first_report_s = track->first_seen_s;
     outcome.confirmed_s = confirmed_s;
     outcome.vehicles = ToInts(track->vehicle_ids);
-    const Eigen::Matrix2d& p = track->covariance_ne_m2;
-    outcome.covariance_ne_m2 = std::array<double, 3>{p(0, 0), p(0, 1), p(1, 1)};
+    outcome.covariance_ne_m2 = server::NorthEastTriangle(track->covariance_en_m2);
   }
 }
 
@@ -268,10 +267,8 @@ void Scorer::ListTracks(const server::Server& server, Report& report) const {
     TrackOutcome out;
     out.track_id = track.track_id;
     out.status = std::string(server::ToString(track.status));
-    // Tracks are (north, east).
-    out.position = frame.ToGeodetic({track.position_ne_m.y(), track.position_ne_m.x()});
-    const Eigen::Matrix2d& p = track.covariance_ne_m2;
-    out.covariance_ne_m2 = {p(0, 0), p(0, 1), p(1, 1)};
+    out.position = frame.ToGeodetic({track.position_en_m.x(), track.position_en_m.y()});
+    out.covariance_ne_m2 = server::NorthEastTriangle(track.covariance_en_m2);
     out.report_count = track.report_count;
     out.vehicles = ToInts(track.vehicle_ids);
     out.first_seen_s = track.first_seen_s;

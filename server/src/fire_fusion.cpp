@@ -10,6 +10,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "fireswarm/server/north_east.hpp"
+
 namespace fireswarm::server {
 namespace {
 
@@ -18,8 +20,8 @@ constexpr std::uint8_t kServerId = 0;
 constexpr std::uint8_t kBroadcastId = 255;
 
 bool AllFinite(const FireObservation& report) {
-  return std::isfinite(report.detection_time_s) && report.position_ne_m.allFinite() &&
-         report.covariance_ne_m2.allFinite() && report.observer_ne_m.allFinite() &&
+  return std::isfinite(report.detection_time_s) && report.position_en_m.allFinite() &&
+         report.covariance_en_m2.allFinite() && report.observer_en_m.allFinite() &&
          std::isfinite(report.confidence);
 }
 
@@ -27,13 +29,19 @@ bool IsValid(const FireObservation& report) {
   return report.vehicle_id != kServerId && report.vehicle_id != kBroadcastId && AllFinite(report);
 }
 
-// The symmetric part of `m` with its eigenvalues raised to at least `floor_m2`:
+// The symmetric part of `m_en` with its eigenvalues raised to at least `floor_m2`:
 // the nearest (in the eigenvalues) symmetric matrix that is safely positive definite.
-Eigen::Matrix2d WithEigenvalueFloor(const Eigen::Matrix2d& m, double floor_m2) {
+// Solved in (north, east) order, the order fusion was written in: Eigen's eigen
+// solver is not symmetric in the axes to the last bit (39 % of random covariances
+// come out different in the last bit in the other order), and such a bit moves a
+// fused position and with it a whole simulated mission.
+Eigen::Matrix2d WithEigenvalueFloor(const Eigen::Matrix2d& m_en, double floor_m2) {
+  const Eigen::Matrix2d m = SwapAxes(m_en);
   const Eigen::Matrix2d symmetric = 0.5 * (m + m.transpose());
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> solver(symmetric);
   const Eigen::Vector2d clamped = solver.eigenvalues().cwiseMax(floor_m2);
-  return solver.eigenvectors() * clamped.asDiagonal() * solver.eigenvectors().transpose();
+  return SwapAxes(Eigen::Matrix2d(solver.eigenvectors() * clamped.asDiagonal() *
+                                  solver.eigenvectors().transpose()));
 }
 
 double Squared(double x) {
@@ -50,14 +58,14 @@ Eigen::Matrix2d BiasCovariance(const FireFusionConfig& config) {
 Eigen::Matrix2d IndependentCovariance(const FireObservation& report,
                                       const FireFusionConfig& config) {
   const Eigen::Matrix2d regularised =
-      WithEigenvalueFloor(report.covariance_ne_m2, Squared(config.min_report_sigma_m));
+      WithEigenvalueFloor(report.covariance_en_m2, Squared(config.min_report_sigma_m));
   return WithEigenvalueFloor(regularised - BiasCovariance(config),
                              Squared(config.min_independent_sigma_m));
 }
 
 struct Estimate {
-  Eigen::Vector2d position_ne_m = Eigen::Vector2d::Zero();
-  Eigen::Matrix2d covariance_ne_m2 = Eigen::Matrix2d::Zero();
+  Eigen::Vector2d position_en_m = Eigen::Vector2d::Zero();
+  Eigen::Matrix2d covariance_en_m2 = Eigen::Matrix2d::Zero();
 };
 
 // Batch fusion of a track's reports, always from scratch and in a fixed order
@@ -74,7 +82,7 @@ Estimate FuseReports(const std::vector<FireObservation>& reports, const FireFusi
     const Eigen::Matrix2d information = IndependentCovariance(report, config).inverse();
     Information& sum = per_vehicle[report.vehicle_id];
     sum.matrix += information;
-    sum.vector += information * report.position_ne_m;
+    sum.vector += information * report.position_en_m;
   }
   // Step 2: each vehicle's estimate carries its bias once; vehicles are independent.
   const Eigen::Matrix2d bias = BiasCovariance(config);
@@ -87,19 +95,24 @@ Estimate FuseReports(const std::vector<FireObservation>& reports, const FireFusi
     total.vector += information * position;
   }
   Estimate estimate;
-  estimate.covariance_ne_m2 = total.matrix.inverse();
-  estimate.position_ne_m = estimate.covariance_ne_m2 * total.vector;
-  // Symmetric by construction up to rounding; make it exactly so for consumers.
-  estimate.covariance_ne_m2 =
-      0.5 * (estimate.covariance_ne_m2 + estimate.covariance_ne_m2.transpose());
+  estimate.covariance_en_m2 = total.matrix.inverse();
+  estimate.position_en_m = estimate.covariance_en_m2 * total.vector;
+  // Symmetric by construction up to rounding; meant to be made exactly so for
+  // consumers. Eigen evaluates `m = 0.5 * (m + m.transpose())` in place, column
+  // by column, so the (0, 1) element is averaged with the (1, 0) one already
+  // replaced: the two may still differ in the last bits. Done in (north, east)
+  // order, as fusion was written, so every covariance stays as it was to the bit.
+  Eigen::Matrix2d covariance_ne_m2 = SwapAxes(estimate.covariance_en_m2);
+  covariance_ne_m2 = 0.5 * (covariance_ne_m2 + covariance_ne_m2.transpose());
+  estimate.covariance_en_m2 = SwapAxes(covariance_ne_m2);
   return estimate;
 }
 
 // Recomputes every derived field of `track` from its reports.
 void Recompute(FireTrack& track, const FireFusionConfig& config) {
   const Estimate estimate = FuseReports(track.reports, config);
-  track.position_ne_m = estimate.position_ne_m;
-  track.covariance_ne_m2 = estimate.covariance_ne_m2;
+  track.position_en_m = estimate.position_en_m;
+  track.covariance_en_m2 = estimate.covariance_en_m2;
   track.report_count = static_cast<std::int32_t>(track.reports.size());
   std::set<std::uint8_t> vehicles;
   track.first_seen_s = track.reports.front().detection_time_s;
@@ -119,7 +132,7 @@ void Recompute(FireTrack& track, const FireFusionConfig& config) {
 bool IndependentViews(const FireObservation& a, const FireObservation& b,
                       const FireFusionConfig& config) {
   if (a.vehicle_id != b.vehicle_id) return true;
-  return (a.observer_ne_m - b.observer_ne_m).norm() >= config.min_pass_separation_m &&
+  return (a.observer_en_m - b.observer_en_m).norm() >= config.min_pass_separation_m &&
          std::abs(a.detection_time_s - b.detection_time_s) >= config.min_pass_interval_s;
 }
 
@@ -215,10 +228,10 @@ FireObservation ObservationFromReport(const radio::FireReport& report,
   observation.vehicle_id = report.header.sender;
   observation.report_id = report.report_id;
   observation.detection_time_s = detection_time_s;
-  observation.position_ne_m = Eigen::Vector2d(fire.north_m, fire.east_m);
-  observation.covariance_ne_m2 << Squared(report.sigma_north_m), cross_m2, cross_m2,
-      Squared(report.sigma_east_m);
-  observation.observer_ne_m = Eigen::Vector2d(observer.north_m, observer.east_m);
+  observation.position_en_m = Eigen::Vector2d(fire.east_m, fire.north_m);
+  observation.covariance_en_m2 << Squared(report.sigma_east_m), cross_m2, cross_m2,
+      Squared(report.sigma_north_m);
+  observation.observer_en_m = Eigen::Vector2d(observer.east_m, observer.north_m);
   observation.confidence = report.confidence;
   return observation;
 }
@@ -315,10 +328,10 @@ std::optional<std::size_t> FireFusion::Associate(const FireObservation& report) 
   double best_distance2 = 0.0;
   for (std::size_t i = 0; i < tracks_.size(); ++i) {
     const FireTrack& track = tracks_[i];
-    const Eigen::Vector2d innovation = report.position_ne_m - track.position_ne_m;
+    const Eigen::Vector2d innovation = report.position_en_m - track.position_en_m;
     const double distance_m = innovation.norm();
     if (distance_m > config_.max_gate_m) continue;
-    const Eigen::Matrix2d innovation_covariance = track.covariance_ne_m2 + report_covariance;
+    const Eigen::Matrix2d innovation_covariance = track.covariance_en_m2 + report_covariance;
     const double mahalanobis2 = innovation.dot(innovation_covariance.inverse() * innovation);
     if (mahalanobis2 > config_.gate_chi_square && distance_m > config_.min_gate_m) continue;
     // Strictly smaller: ties go to the lower track ID (tracks_ is ascending).

@@ -13,19 +13,19 @@ namespace {
 constexpr std::uint8_t kLaneStartFlag = 1;  // radio::Waypoint::flags bit 0
 
 struct Lane {
-  Eigen::Vector2d start_ne_m;
-  Eigen::Vector2d end_ne_m;
+  Eigen::Vector2d start_en_m;
+  Eigen::Vector2d end_en_m;
 };
 
 // How far a taker has to fly, and where its route ends, as lanes are added.
 struct Load {
   double work_m = 0.0;
-  Eigen::Vector2d end_ne_m = Eigen::Vector2d::Zero();
+  Eigen::Vector2d end_en_m = Eigen::Vector2d::Zero();
   std::vector<radio::Waypoint> added;
 };
 
-Eigen::Vector2d NorthEastOf(const common::LocalFrame& frame, const radio::Waypoint& waypoint) {
-  return NorthEast(frame, {waypoint.lat_deg, waypoint.lon_deg});
+Eigen::Vector2d LocalOf(const common::LocalFrame& frame, const radio::Waypoint& waypoint) {
+  return LocalM(frame, {waypoint.lat_deg, waypoint.lon_deg});
 }
 
 std::vector<Lane> LanesOf(const std::vector<radio::Waypoint>& route,
@@ -33,24 +33,24 @@ std::vector<Lane> LanesOf(const std::vector<radio::Waypoint>& route,
   std::vector<Lane> lanes;
   for (std::size_t i = 0; i + 1 < route.size(); ++i) {
     if ((route[i].flags & kLaneStartFlag) == 0) continue;
-    lanes.push_back({NorthEastOf(frame, route[i]), NorthEastOf(frame, route[i + 1])});
+    lanes.push_back({LocalOf(frame, route[i]), LocalOf(frame, route[i + 1])});
   }
   return lanes;
 }
 
 Load LoadOf(const Taker& taker, const common::LocalFrame& frame) {
   Load load;
-  load.end_ne_m = taker.position_ne_m;
+  load.end_en_m = taker.position_en_m;
   for (const radio::Waypoint& waypoint : taker.remaining) {
-    const Eigen::Vector2d next = NorthEastOf(frame, waypoint);
-    load.work_m += (next - load.end_ne_m).norm();
-    load.end_ne_m = next;
+    const Eigen::Vector2d next = LocalOf(frame, waypoint);
+    load.work_m += (next - load.end_en_m).norm();
+    load.end_en_m = next;
   }
   return load;
 }
 
 double Reach(const Load& load, const Lane& lane) {
-  return std::min((lane.start_ne_m - load.end_ne_m).norm(), (lane.end_ne_m - load.end_ne_m).norm());
+  return std::min((lane.start_en_m - load.end_en_m).norm(), (lane.end_en_m - load.end_en_m).norm());
 }
 
 // The taker nearest to `lane` among those not yet done (none: the least loaded).
@@ -74,9 +74,9 @@ std::size_t Nearest(const std::vector<Load>& loads, const std::vector<bool>& don
   return best;
 }
 
-radio::Waypoint WaypointAt(const common::LocalFrame& frame, const Eigen::Vector2d& ne_m,
+radio::Waypoint WaypointAt(const common::LocalFrame& frame, const Eigen::Vector2d& en_m,
                            const Taker& taker, bool lane_start) {
-  const common::LatLon p = frame.ToGeodetic({ne_m.y(), ne_m.x()});
+  const common::LatLon p = Geodetic(frame, en_m);
   radio::Waypoint waypoint;
   waypoint.lat_deg = p.lat_deg;
   waypoint.lon_deg = p.lon_deg;
@@ -96,7 +96,7 @@ std::vector<Eigen::Vector2d> JoinCorners(const planner::TransitPlanner* around,
   try {
     const planner::Path path = around->Plan(PlannerPoint(from), PlannerPoint(to));
     std::vector<Eigen::Vector2d> corners;
-    for (std::size_t i = 1; i + 1 < path.size(); ++i) corners.push_back(NorthEast(path[i]));
+    for (std::size_t i = 1; i + 1 < path.size(); ++i) corners.push_back(FromPlanner(path[i]));
     return corners;
   } catch (const std::runtime_error&) {
     ++straight_joins;
@@ -118,7 +118,7 @@ LaneHandOver HandOverLanes(const std::vector<radio::Waypoint>& orphaned,
     loads.push_back(LoadOf(taker, frame));
     total_m += loads.back().work_m;
   }
-  for (const Lane& lane : lanes) total_m += (lane.end_ne_m - lane.start_ne_m).norm();
+  for (const Lane& lane : lanes) total_m += (lane.end_en_m - lane.start_en_m).norm();
   const double share_m = total_m / static_cast<double>(takers.size());
 
   // Runs of neighbouring lanes: the nearest taker takes lanes until its work
@@ -134,19 +134,19 @@ LaneHandOver HandOverLanes(const std::vector<radio::Waypoint>& orphaned,
     }
     Load& load = loads[taker];
     // Flown from whichever end is nearer.
-    Eigen::Vector2d start = lane.start_ne_m;
-    Eigen::Vector2d end = lane.end_ne_m;
-    if ((end - load.end_ne_m).norm() < (start - load.end_ne_m).norm()) std::swap(start, end);
+    Eigen::Vector2d start = lane.start_en_m;
+    Eigen::Vector2d end = lane.end_en_m;
+    if ((end - load.end_en_m).norm() < (start - load.end_en_m).norm()) std::swap(start, end);
     for (const Eigen::Vector2d& corner :
-         JoinCorners(around, load.end_ne_m, start, result.straight_joins)) {
+         JoinCorners(around, load.end_en_m, start, result.straight_joins)) {
       load.added.push_back(WaypointAt(frame, corner, takers[taker], /*lane_start=*/false));
-      load.work_m += (corner - load.end_ne_m).norm();
-      load.end_ne_m = corner;
+      load.work_m += (corner - load.end_en_m).norm();
+      load.end_en_m = corner;
     }
     load.added.push_back(WaypointAt(frame, start, takers[taker], /*lane_start=*/true));
     load.added.push_back(WaypointAt(frame, end, takers[taker], /*lane_start=*/false));
-    load.work_m += (start - load.end_ne_m).norm() + (end - start).norm();
-    load.end_ne_m = end;
+    load.work_m += (start - load.end_en_m).norm() + (end - start).norm();
+    load.end_en_m = end;
   }
 
   for (std::size_t i = 0; i < takers.size(); ++i) {
@@ -160,9 +160,9 @@ LaneHandOver HandOverLanes(const std::vector<radio::Waypoint>& orphaned,
       radio::Waypoint home_leg = route.back();
       home_leg.flags = 0;
       home_leg.speed_mps = takers[i].speed_mps;
-      const Eigen::Vector2d to = NorthEastOf(frame, home_leg);
+      const Eigen::Vector2d to = LocalOf(frame, home_leg);
       for (const Eigen::Vector2d& corner :
-           JoinCorners(around, load.end_ne_m, to, result.straight_joins)) {
+           JoinCorners(around, load.end_en_m, to, result.straight_joins)) {
         radio::Waypoint waypoint = WaypointAt(frame, corner, takers[i], /*lane_start=*/false);
         waypoint.altitude_m = home_leg.altitude_m;
         load.added.push_back(waypoint);

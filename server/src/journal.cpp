@@ -9,6 +9,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <optional>
 #include <stdexcept>
 #include <utility>
@@ -56,7 +57,9 @@ std::string SystemError(const std::filesystem::path& path, std::string_view step
 // kind or data hold invalid UTF-8.
 std::string EncodeLine(std::uint64_t seq, double t_s, std::string_view kind,
                        const nlohmann::json& data) {
-  std::string line = "{\"seq\":" + std::to_string(seq) + ",\"t\":" + nlohmann::json(t_s).dump() +
+  std::string line = "{\"seq\":" + std::to_string(seq) +
+                     ",\"v\":" + std::to_string(kJournalVersion) +
+                     ",\"t\":" + nlohmann::json(t_s).dump() +
                      ",\"kind\":" + nlohmann::json(kind).dump() + ",\"data\":" + data.dump();
   const std::uint32_t crc = Crc32(line);
   line += kCrcKey;
@@ -98,8 +101,17 @@ std::optional<JournalRecord> DecodeLine(std::string_view line, std::string& why)
     why = "a field of seq (unsigned), t (number), kind (non-empty string), data is missing";
     return std::nullopt;
   }
+  const auto version = object.find("v");
+  if (version != object.end() &&
+      (!version->is_number_unsigned() ||
+       version->get<std::uint64_t>() > std::numeric_limits<std::uint32_t>::max())) {
+    why = "v (format version) is not an unsigned 32-bit number";
+    return std::nullopt;
+  }
   JournalRecord record;
   record.seq = seq->get<std::uint64_t>();
+  // No version: a line of the format before versions (0), read as it was.
+  record.version = version == object.end() ? 0 : version->get<std::uint32_t>();
   record.t_s = t->get<double>();
   record.kind = kind->get<std::string>();
   record.data = *data;
@@ -142,6 +154,13 @@ Replay Parse(const std::filesystem::path& path, const std::string& bytes) {
                                reason + " (journal corrupt before its last line)");
     };
     if (!record) fail(why);
+    // A checksummed line of a newer format was not torn either: refused wherever it is.
+    if (record->version > kJournalVersion) {
+      throw std::runtime_error(path.string() + ": line " + std::to_string(line_number) +
+                               ": format version " + std::to_string(record->version) +
+                               " is newer than this build reads (" +
+                               std::to_string(kJournalVersion) + ")");
+    }
     // A checksummed line with the wrong seq was not torn: lines were lost or files
     // mixed, which dropping it would hide, wherever it is.
     const std::uint64_t expected = replay.records.empty() ? 1 : replay.records.back().seq + 1;

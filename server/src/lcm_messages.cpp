@@ -5,6 +5,7 @@
 #include <string>
 
 #include "fireswarm/server/lcm_bridge.hpp"
+#include "fireswarm/server/north_east.hpp"
 
 namespace fireswarm::server {
 
@@ -73,11 +74,13 @@ fire_track_list_t ToFireTrackList(const Server& server, std::int64_t utime,
     m.track_id = track.track_id;
     m.status = static_cast<std::int8_t>(track.status);
     const common::LatLon where =
-        server.frame().ToGeodetic({track.position_ne_m.y(), track.position_ne_m.x()});
+        server.frame().ToGeodetic({track.position_en_m.x(), track.position_en_m.y()});
     m.lat_deg = where.lat_deg;
     m.lon_deg = where.lon_deg;
+    // fire_track_t's covariance is (north, east).
+    const Eigen::Matrix2d covariance_ne_m2 = SwapAxes(track.covariance_en_m2);
     for (int r = 0; r < 2; ++r) {
-      for (int c = 0; c < 2; ++c) m.covariance_m2[r][c] = track.covariance_ne_m2(r, c);
+      for (int c = 0; c < 2; ++c) m.covariance_m2[r][c] = covariance_ne_m2(r, c);
     }
     m.report_count = track.report_count;
     m.vehicle_count = static_cast<std::int16_t>(track.vehicle_ids.size());

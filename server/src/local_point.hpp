@@ -1,6 +1,7 @@
-// Local positions in the server core: Eigen (north, east) metres of the mission
-// area's frame, while the planner's geometry is (x east, y north). Converted here
-// only, so the order is written once.
+// Local positions in the server core: Eigen (east, north) metres of the mission
+// area's frame, the order of common::EastNorth and of the planner's geometry (x
+// east, y north). Both are adapted to Eigen here only; the projection itself is
+// common::LocalFrame's.
 #pragma once
 
 #include <Eigen/Core>
@@ -10,20 +11,25 @@
 
 namespace fireswarm::server {
 
-/// `point` in `frame`'s local (north, east) metres.
-inline Eigen::Vector2d NorthEast(const common::LocalFrame& frame, common::LatLon point) {
+/// `point` in `frame`'s local (east, north) metres.
+inline Eigen::Vector2d LocalM(const common::LocalFrame& frame, common::LatLon point) {
   const common::EastNorth local = frame.ToLocal(point);
-  return {local.north_m, local.east_m};
+  return {local.east_m, local.north_m};
 }
 
-/// A planner point (x east, y north) as local (north, east) metres.
-inline Eigen::Vector2d NorthEast(const planner::Point& point) {
-  return {point.y(), point.x()};
+/// Local (east, north) metres of `frame` as a geodetic point.
+inline common::LatLon Geodetic(const common::LocalFrame& frame, const Eigen::Vector2d& en_m) {
+  return frame.ToGeodetic({en_m.x(), en_m.y()});
 }
 
-/// Local (north, east) metres as a planner point (x east, y north).
-inline planner::Point PlannerPoint(const Eigen::Vector2d& ne_m) {
-  return {ne_m.y(), ne_m.x()};
+/// A planner point (x east, y north) as local (east, north) metres.
+inline Eigen::Vector2d FromPlanner(const planner::Point& point) {
+  return {point.x(), point.y()};
+}
+
+/// Local (east, north) metres as a planner point (x east, y north).
+inline planner::Point PlannerPoint(const Eigen::Vector2d& en_m) {
+  return {en_m.x(), en_m.y()};
 }
 
 }  // namespace fireswarm::server

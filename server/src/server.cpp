@@ -6,22 +6,56 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <memory>
 #include <stdexcept>
 #include <utility>
 #include <variant>
 
 #include "local_point.hpp"
-#include "server_journal_json.hpp"
 
 namespace fireswarm::server {
 
 namespace {
 
-constexpr double kMaxInvestigateS = 65'535.0;  // Command::duration_s is 16 bits
 constexpr double kMillisPerSecond = 1e3;
+// Room the transit planner keeps around the no-fly zones for its sampling, m (it
+// grows its box to each query's endpoints as well).
+constexpr double kTransitMarginM = 1'000.0;
 
 double Seconds(radio::Nanos t) {
   return radio::ToSeconds(t);
+}
+
+const ServerConfig& Validated(const ServerConfig& config) {
+  config.Validate();
+  return config;
+}
+
+// The planner of routes around the no-fly zones; null when there are none.
+std::unique_ptr<const planner::TransitPlanner> TransitFor(const ServerConfig& config) {
+  if (config.no_fly.empty()) return nullptr;
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  planner::Point low{kInf, kInf};
+  planner::Point high{-kInf, -kInf};
+  for (const planner::Polygon& zone : config.no_fly) {
+    for (const planner::Point& p : zone.outer()) {
+      low = {std::min(low.x(), p.x()), std::min(low.y(), p.y())};
+      high = {std::max(high.x(), p.x()), std::max(high.y(), p.y())};
+    }
+  }
+  const planner::Box bounds{{low.x() - kTransitMarginM, low.y() - kTransitMarginM},
+                            {high.x() + kTransitMarginM, high.y() + kTransitMarginM}};
+  return std::make_unique<const planner::TransitPlanner>(config.no_fly, bounds, config.no_fly_seed);
+}
+
+InvestigationsConfig InvestigationsConfigOf(const ServerConfig& config) {
+  return {.investigate_s = config.investigate_s,
+          .investigate_transit_mps = config.investigate_transit_mps,
+          .investigate_near_m = config.investigate_near_m,
+          .investigate_radius_m = config.investigate_radius_m,
+          .reject_grace_s = config.reject_grace_s,
+          .no_fly = config.no_fly};
 }
 
 }  // namespace
@@ -68,14 +102,13 @@ const char* ToString(MissionState state) {
 }
 
 Server::Server(const ServerConfig& config, const common::LocalFrame& frame)
-    : config_(config),
+    : config_(Validated(config)),
       frame_(frame),
+      transit_(TransitFor(config_)),
       scheduler_(std::make_unique<radio::MasterScheduler>(config.radio)),
       registry_(config.link),
-      fusion_(config.fusion) {
-  config_.Validate();
-  transit_ = TransitFor(config_);
-}
+      fusion_(config.fusion),
+      investigations_(InvestigationsConfigOf(config_), frame_, transit_.get()) {}
 
 void Server::AddVehicle(int receiver_id, double now_s) {
   registry_.Register(receiver_id);
@@ -83,23 +116,20 @@ void Server::AddVehicle(int receiver_id, double now_s) {
   const auto index = static_cast<double>(registry_.size() - 1);
   scheduler_->AddVehicle(static_cast<std::uint8_t>(receiver_id), config_.telemetry_hz,
                          radio::FromSeconds(index * 0.05));
-  Record(now_s, "vehicle", {{"id", receiver_id}});
+  Record(now_s, VehicleAdded{receiver_id});
 }
 
 void Server::LoadMission(std::vector<DroneMission> missions, double now_s) {
   if (mission_) throw std::invalid_argument("a mission is already loaded");
-  nlohmann::json drones = nlohmann::json::array();
   for (const DroneMission& m : missions) {
     if (!registry_.Contains(m.vehicle)) {
       throw std::invalid_argument("mission for vehicle " + std::to_string(m.vehicle) +
                                   ", which is not registered");
     }
-    drones.push_back({{"vehicle", m.vehicle},
-                      {"mission_id", m.mission_id},
-                      {"waypoints", WaypointsJson(m.waypoints)}});
   }
+  MissionLoaded loaded{missions};
   mission_.emplace(*scheduler_, std::move(missions), config_.mission);
-  Record(now_s, "mission", {{"drones", std::move(drones)}});
+  Record(now_s, std::move(loaded));
 }
 
 bool Server::Handle(const OperatorCommand& command, radio::Nanos now, std::string* why) {
@@ -108,11 +138,7 @@ bool Server::Handle(const OperatorCommand& command, radio::Nanos now, std::strin
     if (why != nullptr) *why = std::move(reason);
     return false;
   };
-  const nlohmann::json record = {{"command", static_cast<int>(command.kind)},
-                                 {"vehicle", command.vehicle},
-                                 {"lat_deg", command.point.lat_deg},
-                                 {"lon_deg", command.point.lon_deg},
-                                 {"reason", command.reason}};
+  const CommandAccepted record{command.kind, command.vehicle, command.point, command.reason};
   using Kind = OperatorCommand::Kind;
   switch (command.kind) {
     case Kind::kStart:
@@ -121,17 +147,17 @@ bool Server::Handle(const OperatorCommand& command, radio::Nanos now, std::strin
       mission_->Begin();
       mission_started_s_ = now_s;
       state_ = MissionState::kUploading;
-      Record(now_s, "start", record);
+      Record(now_s, record);
       return true;
     case Kind::kAbort:
       SendToAll(radio::CommandType::kAbort);
       state_ = MissionState::kAborted;
-      Record(now_s, "abort", record);
+      Record(now_s, record);
       return true;
     case Kind::kReturnAll:
       SendToAll(radio::CommandType::kReturnToLaunch);
       if (state_ != MissionState::kAborted) state_ = MissionState::kReturning;
-      Record(now_s, "return_all", record);
+      Record(now_s, record);
       return true;
     case Kind::kInvestigatePoint:
     case Kind::kRetaskVehicle: {
@@ -142,20 +168,24 @@ bool Server::Handle(const OperatorCommand& command, radio::Nanos now, std::strin
       if (command.vehicle == 0 && command.kind == Kind::kRetaskVehicle) {
         return refuse("re-task needs a vehicle");
       }
-      const Eigen::Vector2d point_ne_m = NorthEast(frame_, command.point);
-      const double radius_m = InvestigateRadiusM(command.radius_m);
-      if (std::optional<std::string> no = CircleRefusal(point_ne_m, radius_m)) return refuse(*no);
+      const Eigen::Vector2d point_en_m = LocalM(frame_, command.point);
+      const double radius_m = investigations_.RadiusM(command.radius_m);
+      if (std::optional<std::string> no = investigations_.CircleRefusal(point_en_m, radius_m)) {
+        return refuse(*no);
+      }
       std::optional<std::uint8_t> vehicle;
       if (command.vehicle != 0) {
-        std::optional<std::string> no = ApproachRefusal(command.vehicle, point_ne_m, radius_m);
+        std::optional<std::string> no =
+            investigations_.ApproachRefusal(registry_, command.vehicle, point_en_m, radius_m);
         if (no) return refuse(*no);
         vehicle = command.vehicle;
       } else {
         std::string why_none;
-        vehicle = BestPlacedFor(point_ne_m, radius_m, 0, now_s, &why_none);
+        vehicle =
+            investigations_.BestPlacedFor(registry_, point_en_m, radius_m, 0, now_s, &why_none);
         if (!vehicle) return refuse(why_none);
       }
-      Record(now_s, "investigate_order", record);
+      Record(now_s, record);
       Investigate(*vehicle, command.point, command.radius_m, 0, now_s);
       return true;
     }
@@ -171,33 +201,11 @@ void Server::SendToAll(radio::CommandType type) {
 
 void Server::Investigate(std::uint8_t vehicle, common::LatLon point, double radius_m,
                          std::int32_t track_id, double now_s) {
-  const Eigen::Vector2d point_ne_m = NorthEast(frame_, point);
-  // The vehicle counts the duration from the order: add its transit to the point.
-  double transit_s = 0.0;
-  if (const std::optional<radio::Telemetry>& t = registry_.state(vehicle).telemetry) {
-    transit_s = (NorthEast(frame_, {t->lat_deg, t->lon_deg}) - point_ne_m).norm() /
-                config_.investigate_transit_mps;
-  }
-  const double duration_s = std::min(kMaxInvestigateS, transit_s + config_.investigate_s);
-  radio::Command command;
-  command.type = radio::CommandType::kInvestigate;
-  command.lat_deg = point.lat_deg;
-  command.lon_deg = point.lon_deg;
-  command.radius_m = radius_m > 0.0 ? radius_m : config_.investigate_radius_m;
-  command.duration_s = static_cast<std::uint16_t>(std::lround(duration_s));
-  scheduler_->SendCommand(vehicle, command);
-  Investigation investigation;
-  investigation.vehicle = vehicle;
-  investigation.track_id = track_id;
-  investigation.started_s = now_s;
-  investigation.until_s = now_s + command.duration_s;
-  investigation.point_ne_m = point_ne_m;
-  investigations_.push_back(investigation);
-  Record(now_s, "investigation",
-         {{"vehicle", vehicle},
-          {"track_id", track_id},
-          {"until_s", investigation.until_s},
-          {"point_ne_m", {point_ne_m.x(), point_ne_m.y()}}});
+  const InvestigationOrder order =
+      investigations_.Open(registry_, vehicle, point, radius_m, track_id, now_s);
+  scheduler_->SendCommand(vehicle, order.command);
+  Record(now_s, InvestigationOpened{vehicle, track_id, order.investigation.until_s,
+                                    order.investigation.point_en_m});
 }
 
 std::vector<radio::Burst> Server::Step(radio::Nanos now, std::span<const std::uint8_t> received) {
@@ -217,25 +225,15 @@ std::vector<radio::Burst> Server::Step(radio::Nanos now, std::span<const std::ui
 radio::Nanos Server::NextWakeup() const {
   radio::Nanos next = scheduler_->NextWakeup();
   if (mission_) next = std::min(next, mission_->NextWakeup());
-  for (const Investigation& i : investigations_) {
-    if (i.track_id == 0 || i.judged) continue;
-    const FireTrack* track = fusion_.Find(i.track_id);
-    if (track != nullptr && track->status == FireTrackStatus::kTentative) {
-      next = std::min(next, VerdictDue(i));
-    }
-  }
-  return next;
+  return investigations_.NextVerdict(fusion_, next);
 }
 
 void Server::OnEvent(const radio::SchedulerEvent& event, double now_s) {
   if (const auto* telemetry = std::get_if<radio::TelemetryReceived>(&event)) {
     registry_.OnTelemetry(telemetry->telemetry, now_s);
     const Eigen::Vector2d where =
-        NorthEast(frame_, {telemetry->telemetry.lat_deg, telemetry->telemetry.lon_deg});
-    for (Investigation& i : investigations_) {
-      if (i.vehicle != telemetry->vehicle || i.judged || now_s > i.until_s) continue;
-      i.closest_m = std::min(i.closest_m, (where - i.point_ne_m).norm());
-    }
+        LocalM(frame_, {telemetry->telemetry.lat_deg, telemetry->telemetry.lon_deg});
+    investigations_.OnPosition(telemetry->vehicle, where, now_s);
     clock_offset_s_[telemetry->vehicle] =
         now_s - static_cast<double>(telemetry->telemetry.time_ms) / kMillisPerSecond;
   } else if (const auto* report = std::get_if<radio::FireReportReceived>(&event)) {
@@ -255,7 +253,7 @@ void Server::OnEvent(const radio::SchedulerEvent& event, double now_s) {
     const auto journaled = journaled_phases_.find(id);
     if (journaled != journaled_phases_.end() && journaled->second == phase) continue;
     journaled_phases_[id] = phase;
-    Record(now_s, "phase", {{"vehicle", id}, {"phase", static_cast<int>(phase)}});
+    Record(now_s, PhaseChanged{id, phase});
   }
 }
 
@@ -274,7 +272,7 @@ void Server::OnFireReport(const radio::FireReportReceived& received, double now_
       result.outcome == FireReportOutcome::kInvalid) {
     return;
   }
-  Record(now_s, "report", ObservationJson(observation));
+  Record(now_s, ReportFused{observation});
   AfterFusion(observation, result, now_s);
 }
 
@@ -282,12 +280,10 @@ void Server::AfterFusion(const FireObservation& observation, const FireReportRes
                          double now_s) {
   if (result.outcome == FireReportOutcome::kConfirmed) {
     // The investigator's job is done: back to its lanes at once.
-    for (Investigation& i : investigations_) {
-      if (i.track_id != result.track_id || i.until_s <= now_s) continue;
+    for (const std::uint8_t vehicle : investigations_.EndForConfirmed(result.track_id, now_s)) {
       radio::Command resume;
       resume.type = radio::CommandType::kResume;
-      scheduler_->SendCommand(i.vehicle, resume);
-      i.until_s = now_s;
+      scheduler_->SendCommand(vehicle, resume);
     }
     return;
   }
@@ -295,44 +291,28 @@ void Server::AfterFusion(const FireObservation& observation, const FireReportRes
   if (state_ != MissionState::kRunning && state_ != MissionState::kUploading) return;
   const FireTrack* track = fusion_.Find(result.track_id);
   if (track == nullptr) return;
-  const double radius_m = InvestigateRadiusM(0.0);
+  const double radius_m = investigations_.RadiusM(0.0);
   std::string why_none;
   std::optional<std::uint8_t> vehicle;
-  if (std::optional<std::string> no = CircleRefusal(track->position_ne_m, radius_m)) {
+  if (std::optional<std::string> no =
+          investigations_.CircleRefusal(track->position_en_m, radius_m)) {
     why_none = std::move(*no);
   } else {
-    vehicle =
-        BestPlacedFor(track->position_ne_m, radius_m, observation.vehicle_id, now_s, &why_none);
+    vehicle = investigations_.BestPlacedFor(registry_, track->position_en_m, radius_m,
+                                            observation.vehicle_id, now_s, &why_none);
   }
   if (!vehicle) {
-    Record(now_s, "no_investigation", {{"track_id", result.track_id}, {"why", why_none}});
+    Record(now_s, InvestigationNotSent{result.track_id, why_none});
     return;
   }
-  const common::LatLon point =
-      frame_.ToGeodetic({track->position_ne_m.y(), track->position_ne_m.x()});
+  const common::LatLon point = Geodetic(frame_, track->position_en_m);
   Investigate(*vehicle, point, 0.0, result.track_id, now_s);
-}
-
-radio::Nanos Server::VerdictDue(const Investigation& investigation) const {
-  return radio::FromSeconds(investigation.until_s + config_.reject_grace_s);
 }
 
 void Server::CheckInvestigations(radio::Nanos now) {
   const double now_s = Seconds(now);
-  for (Investigation& i : investigations_) {
-    // Compared in the clock's own units: NextWakeup() asks for exactly VerdictDue(),
-    // and a round trip through seconds could leave `now` a hair short of it.
-    if (i.judged || i.track_id == 0 || now < VerdictDue(i)) continue;
-    i.judged = true;
-    const FireTrack* track = fusion_.Find(i.track_id);
-    if (track == nullptr || track->status != FireTrackStatus::kTentative) continue;
-    if (!(i.closest_m <= config_.investigate_near_m)) continue;  // never got there: no verdict
-    const bool seen_again = std::ranges::any_of(track->reports, [&](const FireObservation& o) {
-      return o.vehicle_id == i.vehicle && o.detection_time_s >= i.started_s;
-    });
-    if (seen_again) continue;  // still tentative, but not a rock: leave it to later views
-    fusion_.Reject(i.track_id);
-    Record(now_s, "reject", {{"track_id", i.track_id}, {"by_vehicle", i.vehicle}});
+  for (const Rejection& rejection : investigations_.Judge(now, fusion_)) {
+    Record(now_s, TrackRejected{rejection.track_id, rejection.by_vehicle});
   }
 }
 
@@ -351,7 +331,7 @@ void Server::UpdateState(double now_s) {
   }
   if (next != state_) {
     state_ = next;
-    Record(now_s, "state", {{"state", static_cast<int>(state_)}});
+    Record(now_s, MissionStateChanged{state_});
   }
 }
 

@@ -7,7 +7,7 @@
 
 #include "fireswarm/server/handover.hpp"
 #include "fireswarm/server/server.hpp"
-#include "server_journal_json.hpp"
+#include "local_point.hpp"
 
 namespace fireswarm::server {
 
@@ -33,8 +33,7 @@ std::vector<Taker> Server::TakersFor(std::uint8_t lost, double now_s) const {
     }
     Taker taker;
     taker.vehicle = id;
-    const common::EastNorth here = frame_.ToLocal({telemetry->lat_deg, telemetry->lon_deg});
-    taker.position_ne_m = Eigen::Vector2d(here.north_m, here.east_m);
+    taker.position_en_m = LocalM(frame_, {telemetry->lat_deg, telemetry->lon_deg});
     taker.remaining = mission_->Remaining(id, /*from_leg_start=*/false);
     const std::vector<radio::Waypoint>& own = mission_->mission_of(id).waypoints;
     taker.altitude_m = own.empty() ? telemetry->altitude_m : own.front().altitude_m;
@@ -56,21 +55,16 @@ void Server::HandOver(std::uint8_t lost, double now_s) {
     next_id = std::max(next_id, mission_->mission_of(id).mission_id);
   }
   LaneHandOver handed = HandOverLanes(orphaned, TakersFor(lost, now_s), frame_, transit_.get());
-  nlohmann::json drones = nlohmann::json::array();
+  LanesHandedOver record{lost, why, {}, handed.straight_joins};
   for (auto& [vehicle, route] : handed.routes) {
     DroneMission mission;
     mission.vehicle = vehicle;
     mission.mission_id = ++next_id;
     mission.waypoints = std::move(route);
-    drones.push_back({{"vehicle", mission.vehicle},
-                      {"mission_id", mission.mission_id},
-                      {"waypoints", WaypointsJson(mission.waypoints)}});
+    record.drones.push_back(mission);
     mission_->Replace(std::move(mission));
   }
-  nlohmann::json record = {{"lost", lost}, {"why", why}, {"drones", std::move(drones)}};
-  // Only when it happened, so a journal without zones reads as before.
-  if (handed.straight_joins > 0) record["straight_joins"] = handed.straight_joins;
-  Record(now_s, "handover", std::move(record));
+  Record(now_s, std::move(record));
 }
 
 // A drone given up as lost may only have been out of reach. Its lanes are
@@ -91,8 +85,7 @@ void Server::RecallHandedOverDrones(double now_s) {
     command.type = radio::CommandType::kReturnToLaunch;
     scheduler_->SendCommand(id, command);
     recalled = true;
-    Record(now_s, "recall",
-           {{"vehicle", id}, {"why", "heard again after its lanes were handed over"}});
+    Record(now_s, DroneRecalled{id, "heard again after its lanes were handed over"});
   }
 }
 

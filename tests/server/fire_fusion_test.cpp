@@ -32,9 +32,9 @@ FireObservation Report(int vehicle, int report_id, double time_s, double north_m
   report.vehicle_id = static_cast<std::uint8_t>(vehicle);
   report.report_id = static_cast<std::uint16_t>(report_id);
   report.detection_time_s = time_s;
-  report.position_ne_m = Eigen::Vector2d(north_m, east_m);
-  report.covariance_ne_m2 = sigma_m * sigma_m * Eigen::Matrix2d::Identity();
-  report.observer_ne_m = Eigen::Vector2d(observer_north_m, observer_east_m);
+  report.position_en_m = Eigen::Vector2d(east_m, north_m);
+  report.covariance_en_m2 = sigma_m * sigma_m * Eigen::Matrix2d::Identity();
+  report.observer_en_m = Eigen::Vector2d(observer_east_m, observer_north_m);
   report.confidence = 0.8;
   return report;
 }
@@ -57,9 +57,9 @@ TEST(FireFusion, SingleReportStartsTentativeTrackAtTheReport) {
   const FireTrack& track = fusion.tracks().front();
   EXPECT_EQ(track.track_id, 1);
   EXPECT_EQ(track.status, FireTrackStatus::kTentative);
-  EXPECT_NEAR((track.position_ne_m - report.position_ne_m).norm(), 0.0, kTightM);
+  EXPECT_NEAR((track.position_en_m - report.position_en_m).norm(), 0.0, kTightM);
   // A report wider than the vehicle bias keeps its own covariance.
-  EXPECT_NEAR((track.covariance_ne_m2 - report.covariance_ne_m2).norm(), 0.0, kTightM);
+  EXPECT_NEAR((track.covariance_en_m2 - report.covariance_en_m2).norm(), 0.0, kTightM);
   EXPECT_EQ(track.report_count, 1);
   EXPECT_EQ(track.vehicle_ids, std::vector<std::uint8_t>{3});
   EXPECT_DOUBLE_EQ(track.first_seen_s, 12.5);
@@ -81,8 +81,8 @@ TEST(FireFusion, SecondDroneConfirmsTrack) {
   EXPECT_EQ(track.vehicle_ids, (std::vector<std::uint8_t>{1, 2}));
   EXPECT_EQ(track.report_count, 2);
   // Two equal covariances: the fused position is the midpoint.
-  EXPECT_NEAR(track.position_ne_m.x(), 1.0, kTightM);
-  EXPECT_NEAR(track.position_ne_m.y(), 0.5, kTightM);
+  EXPECT_NEAR(track.position_en_m.x(), 0.5, kTightM);  // east
+  EXPECT_NEAR(track.position_en_m.y(), 1.0, kTightM);  // north
   // A further report keeps it confirmed.
   EXPECT_EQ(fusion.Add(Report(1, 2, 12.0, 1.0, 0.0)).outcome, FireReportOutcome::kUpdated);
   EXPECT_EQ(fusion.tracks().front().status, FireTrackStatus::kConfirmed);
@@ -150,8 +150,8 @@ TEST(FireFusion, TwoFiresSixtyMetresApartStayTwoTracks) {
     EXPECT_EQ(track.report_count, 3);
     EXPECT_EQ(track.status, FireTrackStatus::kConfirmed);
   }
-  EXPECT_NEAR(fusion.tracks()[0].position_ne_m.norm(), 0.0, 1.0);
-  EXPECT_NEAR((fusion.tracks()[1].position_ne_m - Eigen::Vector2d(kSeparationM, 0.0)).norm(), 0.0,
+  EXPECT_NEAR(fusion.tracks()[0].position_en_m.norm(), 0.0, 1.0);
+  EXPECT_NEAR((fusion.tracks()[1].position_en_m - Eigen::Vector2d(0.0, kSeparationM)).norm(), 0.0,
               1.0);
 }
 
@@ -159,14 +159,14 @@ TEST(FireFusion, OutlierOutsideGateStartsItsOwnTrack) {
   FireFusion fusion;
   fusion.Add(Report(1, 1, 0.0, 0.0, 0.0));
   fusion.Add(Report(2, 1, 1.0, 0.5, 0.5));
-  const Eigen::Vector2d before = fusion.tracks().front().position_ne_m;
+  const Eigen::Vector2d before = fusion.tracks().front().position_en_m;
 
   // Beyond the minimum gate with 3 m sigmas: far outside the chi-square gate too.
   const double off_m = fusion.config().min_gate_m + 5.0;
   const FireReportResult outlier = fusion.Add(Report(3, 1, 2.0, off_m, 0.0));
   EXPECT_EQ(outlier.outcome, FireReportOutcome::kNewTrack);
   EXPECT_EQ(outlier.track_id, 2);
-  EXPECT_EQ(fusion.tracks().front().position_ne_m, before);  // not pulled by the outlier
+  EXPECT_EQ(fusion.tracks().front().position_en_m, before);  // not pulled by the outlier
   EXPECT_EQ(fusion.tracks().front().report_count, 2);
 }
 
@@ -214,7 +214,7 @@ TEST(FireFusion, DuplicateReportIsIgnored) {
 
   // A resend, even with slightly different content, changes nothing.
   FireObservation resend = report;
-  resend.position_ne_m += Eigen::Vector2d(1.0, 1.0);
+  resend.position_en_m += Eigen::Vector2d(1.0, 1.0);
   resend.detection_time_s = 9.0;
   const FireReportResult result = fusion.Add(resend);
   EXPECT_EQ(result.outcome, FireReportOutcome::kDuplicate);
@@ -268,7 +268,7 @@ TEST(FireFusion, OneDroneNeverShrinksBelowItsBiasWhileThreeDronesDo) {
   FireFusion one_drone(config);
   for (int i = 0; i < kReports; ++i) one_drone.Add(Report(1, i, i, 0.1 * (i % 3), 0.0));
   ASSERT_EQ(one_drone.tracks().size(), 1U);
-  const Eigen::Matrix2d one = one_drone.tracks().front().covariance_ne_m2;
+  const Eigen::Matrix2d one = one_drone.tracks().front().covariance_en_m2;
   // The double-count guard: covariance - bias stays positive semi-definite.
   EXPECT_GE(MinEigenvalue(one - bias), -kTightM);
   // A naive fusion would have reached sigma^2 / kReports, far below the bias.
@@ -278,7 +278,7 @@ TEST(FireFusion, OneDroneNeverShrinksBelowItsBiasWhileThreeDronesDo) {
   for (int vehicle = 1; vehicle <= 3; ++vehicle)
     three_drones.Add(Report(vehicle, 1, 0.0, 0.0, 0.0));
   ASSERT_EQ(three_drones.tracks().size(), 1U);
-  const Eigen::Matrix2d three = three_drones.tracks().front().covariance_ne_m2;
+  const Eigen::Matrix2d three = three_drones.tracks().front().covariance_en_m2;
   EXPECT_LT(MaxEigenvalue(three), MinEigenvalue(bias));
   // Independent vehicles: the information adds up exactly.
   EXPECT_NEAR(MaxEigenvalue(three), kReportSigmaM * kReportSigmaM / 3.0, 1e-9);
@@ -319,18 +319,18 @@ TEST(FireFusion, MonteCarloNeesIsConsistentWhereNaiveFusionIsNot) {
       for (int k = 0; k < kReportsPerDrone; ++k) {
         const Eigen::Vector2d noise(kNoiseSigmaM * unit(rng), kNoiseSigmaM * unit(rng));
         FireObservation report = Report(drone, k, 10.0 * k, 0.0, 0.0);
-        report.position_ne_m = truth + bias + noise;
-        report.covariance_ne_m2 = report_covariance;
+        report.position_en_m = truth + bias + noise;
+        report.covariance_en_m2 = report_covariance;
         fusion.Add(report);
         naive_information += report_covariance.inverse();
-        naive_vector += report_covariance.inverse() * report.position_ne_m;
+        naive_vector += report_covariance.inverse() * report.position_en_m;
       }
     }
     ASSERT_EQ(fusion.tracks().size(), 1U) << "trial " << trial;
     const FireTrack& track = fusion.tracks().front();
     ASSERT_EQ(track.report_count, kDrones * kReportsPerDrone);
-    const Eigen::Vector2d error = track.position_ne_m - truth;
-    nees_sum += error.dot(track.covariance_ne_m2.inverse() * error);
+    const Eigen::Vector2d error = track.position_en_m - truth;
+    nees_sum += error.dot(track.covariance_en_m2.inverse() * error);
 
     const Eigen::Matrix2d naive_covariance = naive_information.inverse();
     const Eigen::Vector2d naive_error = naive_covariance * naive_vector - truth;
@@ -374,8 +374,8 @@ TEST(FireFusion, RestoreFromSnapshotBehavesIdentically) {
   // The journal's view: the tracks and the next ID. Derived fields are not trusted.
   std::vector<FireTrack> snapshot = original.tracks();
   for (FireTrack& track : snapshot) {
-    track.position_ne_m.setZero();
-    track.covariance_ne_m2.setZero();
+    track.position_en_m.setZero();
+    track.covariance_en_m2.setZero();
     track.report_count = 0;
     track.vehicle_ids.clear();
   }
@@ -457,17 +457,17 @@ TEST(FireFusion, OutOfOrderReportsSpanFirstAndLastSeen) {
 TEST(FireFusion, InvalidReportsAreIgnored) {
   FireFusion fusion;
   FireObservation not_finite = Report(1, 1, 0.0, 0.0, 0.0);
-  not_finite.position_ne_m.x() = std::nan("");
+  not_finite.position_en_m.x() = std::nan("");
   EXPECT_EQ(fusion.Add(not_finite).outcome, FireReportOutcome::kInvalid);
   EXPECT_EQ(fusion.Add(Report(0, 1, 0.0, 0.0, 0.0)).outcome, FireReportOutcome::kInvalid);
   EXPECT_EQ(fusion.Add(Report(255, 1, 0.0, 0.0, 0.0)).outcome, FireReportOutcome::kInvalid);
   EXPECT_TRUE(fusion.tracks().empty());
   // A zero covariance (sigma 0 on the wire) is regularised, not refused.
   FireObservation zero = Report(1, 2, 0.0, 0.0, 0.0);
-  zero.covariance_ne_m2.setZero();
+  zero.covariance_en_m2.setZero();
   EXPECT_EQ(fusion.Add(zero).outcome, FireReportOutcome::kNewTrack);
-  EXPECT_TRUE(fusion.tracks().front().covariance_ne_m2.allFinite());
-  EXPECT_GT(MinEigenvalue(fusion.tracks().front().covariance_ne_m2), 0.0);
+  EXPECT_TRUE(fusion.tracks().front().covariance_en_m2.allFinite());
+  EXPECT_GT(MinEigenvalue(fusion.tracks().front().covariance_en_m2), 0.0);
 }
 
 TEST(FireFusion, ConfigValidateNamesTheBadField) {
@@ -505,14 +505,14 @@ TEST(FireFusion, ObservationFromRadioReportUsesTheLocalFrame) {
   EXPECT_EQ(observation.vehicle_id, 9);
   EXPECT_EQ(observation.report_id, 321);
   EXPECT_DOUBLE_EQ(observation.detection_time_s, 77.0);
-  EXPECT_NEAR(observation.position_ne_m.x(), 40.0, 1e-6);  // north
-  EXPECT_NEAR(observation.position_ne_m.y(), 30.0, 1e-6);  // east
-  EXPECT_NEAR(observation.observer_ne_m.x(), 5.0, 1e-6);
-  EXPECT_NEAR(observation.observer_ne_m.y(), -10.0, 1e-6);
-  EXPECT_DOUBLE_EQ(observation.covariance_ne_m2(0, 0), 4.0);
-  EXPECT_DOUBLE_EQ(observation.covariance_ne_m2(1, 1), 9.0);
-  EXPECT_DOUBLE_EQ(observation.covariance_ne_m2(0, 1), 3.0);
-  EXPECT_DOUBLE_EQ(observation.covariance_ne_m2(1, 0), 3.0);
+  EXPECT_NEAR(observation.position_en_m.x(), 30.0, 1e-6);  // east
+  EXPECT_NEAR(observation.position_en_m.y(), 40.0, 1e-6);  // north
+  EXPECT_NEAR(observation.observer_en_m.x(), -10.0, 1e-6);
+  EXPECT_NEAR(observation.observer_en_m.y(), 5.0, 1e-6);
+  EXPECT_DOUBLE_EQ(observation.covariance_en_m2(0, 0), 9.0);  // east: sigma_east_m squared
+  EXPECT_DOUBLE_EQ(observation.covariance_en_m2(1, 1), 4.0);
+  EXPECT_DOUBLE_EQ(observation.covariance_en_m2(0, 1), 3.0);
+  EXPECT_DOUBLE_EQ(observation.covariance_en_m2(1, 0), 3.0);
   EXPECT_DOUBLE_EQ(observation.confidence, 0.9);
 }
 

@@ -42,7 +42,7 @@ Taker TakerAt(std::uint8_t id, double east_m, std::vector<radio::Waypoint> remai
               double altitude_m) {
   Taker t;
   t.vehicle = id;
-  t.position_ne_m = Eigen::Vector2d(0.0, east_m);
+  t.position_en_m = Eigen::Vector2d(east_m, 0.0);
   t.remaining = std::move(remaining);
   t.altitude_m = altitude_m;
   t.speed_mps = 9.0;
@@ -119,7 +119,7 @@ TEST(HandOverLanes, NothingToHandOverWithoutALane) {
 // The taker's path as flown: from where it is through every waypoint, in the
 // planner's (east, north) metres.
 planner::Path FlownPath(const Taker& taker, const std::vector<radio::Waypoint>& route) {
-  planner::Path path{{taker.position_ne_m.y(), taker.position_ne_m.x()}};
+  planner::Path path{{taker.position_en_m.x(), taker.position_en_m.y()}};
   for (const radio::Waypoint& w : route) {
     const common::EastNorth p = kFrame.ToLocal({w.lat_deg, w.lon_deg});
     path.emplace_back(p.east_m, p.north_m);
@@ -143,7 +143,7 @@ TEST(HandOverLanes, JoinsGoAroundTheNoFlyZones) {
   const planner::TransitPlanner around(zones, planner::Box{{-1000, -1000}, {2500, 2500}}, 1);
   const Taker taker = TakerAt(1, 0.0, {}, 60.0);
   Taker north_of_origin = taker;
-  north_of_origin.position_ne_m = Eigen::Vector2d(200.0, 0.0);
+  north_of_origin.position_en_m = Eigen::Vector2d(0.0, 200.0);
 
   // Straight, both joins would cross a zone.
   const LaneHandOver straight = HandOverLanes(orphaned, {north_of_origin}, kFrame);

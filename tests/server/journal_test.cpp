@@ -9,10 +9,12 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <boost/crc.hpp>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
@@ -422,6 +424,64 @@ INSTANTIATE_TEST_SUITE_P(Journal, JournalKill,
                            return param_info.param == JournalSync::kEveryAppend ? "EveryAppend"
                                                                                 : "OnSync";
                          });
+
+}  // namespace
+}  // namespace fireswarm::server
+
+namespace fireswarm::server {
+namespace {
+
+// `body` (a line up to its data, without the closing brace) as a committed line
+// with its checksum, as Append writes it.
+std::string CommittedLine(const std::string& body) {
+  boost::crc_32_type crc;
+  crc.process_bytes(body.data(), body.size());
+  std::ostringstream hex;
+  hex << std::hex << std::setw(8) << std::setfill('0') << crc.checksum();
+  return body + ",\"crc\":\"" + hex.str() + "\"}\n";
+}
+
+TEST(JournalVersion, EveryLineCarriesTheFormatVersion) {
+  const ScopedDir dir;
+  const fs::path path = dir.path / "mission.jsonl";
+  {
+    Journal journal = Journal::Open(path, [](const JournalRecord&) {});
+    journal.Append(1.0, "vehicle", {{"id", 1}});
+  }
+  EXPECT_THAT(ReadFile(path), HasSubstr("{\"seq\":1,\"v\":1,\"t\":1.0,"));
+  const std::vector<JournalRecord> records = OpenAndRead(path);
+  ASSERT_THAT(records, SizeIs(1));
+  EXPECT_EQ(records[0].version, kJournalVersion);
+}
+
+TEST(JournalVersion, ALineWithoutAVersionIsReadAsTheFormatBeforeVersions) {
+  const ScopedDir dir;
+  const fs::path path = dir.path / "mission.jsonl";
+  WriteFile(path, CommittedLine(R"({"seq":1,"t":0.5,"kind":"vehicle","data":{"id":1})") +
+                      CommittedLine(R"({"seq":2,"t":0.5,"kind":"vehicle","data":{"id":2})"));
+  const std::vector<JournalRecord> records = OpenAndRead(path);
+  ASSERT_THAT(records, SizeIs(2));
+  EXPECT_EQ(records[1].version, 0U);
+  EXPECT_EQ(records[1].data, nlohmann::json({{"id", 2}}));
+  // Appended after them, a record carries the version again.
+  {
+    Journal journal = Journal::Open(path, [](const JournalRecord&) {});
+    journal.Append(1.0, "vehicle", {{"id", 3}});
+  }
+  EXPECT_EQ(OpenAndRead(path).back().version, kJournalVersion);
+}
+
+TEST(JournalVersion, RefusesANewerFormatNamingTheLineEvenAsTheLast) {
+  const ScopedDir dir;
+  const fs::path path = dir.path / "mission.jsonl";
+  const std::string newer = CommittedLine(R"({"seq":2,"v":99,"t":0.5,"kind":"x","data":{})");
+  WriteFile(path, CommittedLine(R"({"seq":1,"v":1,"t":0.5,"kind":"x","data":{})") + newer);
+  const std::string error = OpenError(path);
+  EXPECT_THAT(error, HasSubstr("line 2"));
+  EXPECT_THAT(error, HasSubstr("format version 99 is newer than this build reads (1)"));
+  WriteFile(path, CommittedLine(R"({"seq":1,"v":"one","t":0.5,"kind":"x","data":{})") + newer);
+  EXPECT_THAT(OpenError(path), HasSubstr("line 1: v (format version) is not an unsigned"));
+}
 
 }  // namespace
 }  // namespace fireswarm::server

@@ -7,8 +7,10 @@
 #include <cmath>
 #include <set>
 #include <string>
+#include <variant>
 #include <vector>
 
+#include "fireswarm/server/journal_format.hpp"
 #include "server/fake_fleet.hpp"
 
 namespace fireswarm::server {
@@ -155,7 +157,8 @@ ServerConfig WithNoFly(planner::MultiPolygon zones) {
 bool Journaled(const std::vector<JournalEntry>& journal, const std::string& kind,
                const std::string& why_part) {
   return std::ranges::any_of(journal, [&](const JournalEntry& e) {
-    return e.kind == kind && e.data.value("why", std::string()).find(why_part) != std::string::npos;
+    return JournalKindOf(e) == kind &&
+           JournalDataOf(e).value("why", std::string()).find(why_part) != std::string::npos;
   });
 }
 
@@ -374,8 +377,11 @@ TEST(Server, ADroneGivenUpAsLostIsSentHomeWhenHeardAgain) {
   EXPECT_EQ(LastOf(air.vehicle(1), radio::CommandType::kReturnToLaunch), nullptr);
   air.Run(server, air.channel.now() + 10 * kSecond, [] { return false; });
   std::vector<JournalEntry> journal = server.TakeJournalEntries();
-  EXPECT_EQ(
-      std::ranges::count_if(journal, [](const JournalEntry& e) { return e.kind == "recall"; }), 1);
+  EXPECT_EQ(std::ranges::count_if(journal,
+                                  [](const JournalEntry& e) {
+                                    return std::holds_alternative<DroneRecalled>(e.event);
+                                  }),
+            1);
   EXPECT_TRUE(Journaled(journal, "recall", "heard again after its lanes were handed over"));
   // A restarted server knows it was recalled and leaves it be.
   Server restored = Server::Restore(ServerConfig{}, kFrame, journal);
@@ -473,13 +479,14 @@ TEST(Server, AHandedOverLaneIsJoinedAroundANoFlyZone) {
 }
 
 TEST(Server, RestoreNamesTheBadEntry) {
-  std::vector<JournalEntry> journal{{0.0, "vehicle", {{"id", 1}}},
-                                    {1.0, "report", {{"vehicle", 1}}}};
+  const std::vector<JournalEntry> journal{{0.0, 1, VehicleAdded{1}},
+                                          {1.0, 1, PhaseChanged{1, DronePhase::kFlying}}};
   try {
     (void)Server::Restore(ServerConfig{}, kFrame, journal);
-    FAIL() << "a report without its fields was accepted";
+    FAIL() << "a phase before any mission was accepted";
   } catch (const std::runtime_error& e) {
-    EXPECT_NE(std::string(e.what()).find("journal entry 1 (report)"), std::string::npos)
+    EXPECT_NE(std::string(e.what()).find("journal entry 1 (phase): phase before any mission"),
+              std::string::npos)
         << e.what();
   }
 }

@@ -4,8 +4,10 @@
 // randomness; time comes in with every report as seconds of mission time.
 //
 // Frame: positions are metres in a local frame held by the caller
-// (common::LocalFrame); vectors and covariances are ordered (north, east),
-// index 0 = north, 1 = east, as in the vehicles' reports and fire_track_t.
+// (common::LocalFrame); vectors and covariances are ordered (east, north),
+// index 0 = east, 1 = north, as common::EastNorth and the planner. The vehicles'
+// reports and fire_track_t give sigmas and covariances north first: converted
+// in ObservationFromReport and north_east.hpp.
 //
 // Why a per-vehicle bias term (and not covariance intersection, nor treating
 // every report as independent):
@@ -93,12 +95,12 @@ struct FireObservation {
   std::uint8_t vehicle_id = 0;    ///< reporting vehicle's receiver ID, 1..254
   std::uint16_t report_id = 0;    ///< per vehicle; a resend keeps its ID
   double detection_time_s = 0.0;  ///< mission time, server clock, s
-  /// Estimated fire position (north, east), m, in the caller's local frame.
-  Eigen::Vector2d position_ne_m = Eigen::Vector2d::Zero();
-  /// Covariance of position_ne_m, (north, east), m^2; includes the vehicle's GPS error.
-  Eigen::Matrix2d covariance_ne_m2 = Eigen::Matrix2d::Zero();
-  /// Vehicle position at detection (north, east), m, in the same frame.
-  Eigen::Vector2d observer_ne_m = Eigen::Vector2d::Zero();
+  /// Estimated fire position (east, north), m, in the caller's local frame.
+  Eigen::Vector2d position_en_m = Eigen::Vector2d::Zero();
+  /// Covariance of position_en_m, (east, north), m^2; includes the vehicle's GPS error.
+  Eigen::Matrix2d covariance_en_m2 = Eigen::Matrix2d::Zero();
+  /// Vehicle position at detection (east, north), m, in the same frame.
+  Eigen::Vector2d observer_en_m = Eigen::Vector2d::Zero();
   double confidence = 0.0;  ///< detector's confidence, [0, 1]
 
   friend bool operator==(const FireObservation&, const FireObservation&) = default;
@@ -117,10 +119,10 @@ FireObservation ObservationFromReport(const radio::FireReport& report,
 struct FireTrack {
   std::int32_t track_id = 0;  ///< unique, increasing in creation order, never reused
   FireTrackStatus status = FireTrackStatus::kTentative;
-  /// Fused fire position (north, east), m, local frame.
-  Eigen::Vector2d position_ne_m = Eigen::Vector2d::Zero();
-  /// Covariance of position_ne_m, (north, east), m^2.
-  Eigen::Matrix2d covariance_ne_m2 = Eigen::Matrix2d::Zero();
+  /// Fused fire position (east, north), m, local frame.
+  Eigen::Vector2d position_en_m = Eigen::Vector2d::Zero();
+  /// Covariance of position_en_m, (east, north), m^2.
+  Eigen::Matrix2d covariance_en_m2 = Eigen::Matrix2d::Zero();
   std::int32_t report_count = 0;          ///< reports absorbed (== reports.size())
   std::vector<std::uint8_t> vehicle_ids;  ///< distinct reporting vehicles, ascending
   double first_seen_s = 0.0;              ///< earliest detection time, s

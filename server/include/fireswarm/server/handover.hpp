@@ -30,8 +30,8 @@ namespace fireswarm::server {
 /// A drone that can take lanes.
 struct Taker {
   std::uint8_t vehicle = 0;
-  /// Where it is now, local (north, east) m.
-  Eigen::Vector2d position_ne_m = Eigen::Vector2d::Zero();
+  /// Where it is now, local (east, north) m.
+  Eigen::Vector2d position_en_m = Eigen::Vector2d::Zero();
   /// The waypoints it still has to fly, the one it flies to first. May be empty
   /// (a drone whose lanes are all flown).
   std::vector<radio::Waypoint> remaining;

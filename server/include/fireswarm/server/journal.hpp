@@ -3,8 +3,10 @@
 // none.
 //
 // File format: JSON Lines, one record per line, each line one JSON object
-//   {"seq":12,"t":431.25,"kind":"fire_track","data":{...},"crc":"89abcdef"}
-// seq counts records 1, 2, 3, ... in file order; t is the mission clock (seconds);
+//   {"seq":12,"v":1,"t":431.25,"kind":"fire_track","data":{...},"crc":"89abcdef"}
+// seq counts records 1, 2, 3, ... in file order; v is the format version
+// (kJournalVersion; a line without it is version 0, the format before versions,
+// which had the same fields and data); t is the mission clock (seconds);
 // kind names the writer's event ("mission_state", "fire_track", ...) and data is
 // any JSON value the writer chose. crc is the CRC-32 (IEEE 802.3, as zlib and
 // PNG), in 8 lower-case hex digits, of the line's bytes before `,"crc":"`; the
@@ -26,12 +28,17 @@
 
 namespace fireswarm::server {
 
+/// The format version Append writes; Open reads it and every version below.
+inline constexpr std::uint32_t kJournalVersion = 1;
+
 /// One journal record as written by Append and replayed by Open.
 struct JournalRecord {
   std::uint64_t seq = 0;  ///< position in the journal, 1 for the first record
   double t_s = 0.0;       ///< mission clock when appended, seconds
   std::string kind;       ///< the writer's event name, never empty
   nlohmann::json data;    ///< the writer's payload
+  /// Format version of its line: 0 for a line written before versions existed.
+  std::uint32_t version = kJournalVersion;
   friend bool operator==(const JournalRecord&, const JournalRecord&) = default;
 };
 
@@ -70,7 +77,8 @@ class Journal {
   /// (and the 1-based line for corruption) when the file cannot be opened, read or
   /// locked (another process holds it), or a line other than the last is not a
   /// valid record (bad checksum, bad JSON, missing field, seq not one more than
-  /// the line before). Exceptions thrown by `visit` propagate.
+  /// the line before), or any line has a format version above kJournalVersion.
+  /// Exceptions thrown by `visit` propagate.
   static Journal Open(const std::filesystem::path& path, const Visitor& visit,
                       JournalSync sync = JournalSync::kEveryAppend);
 

@@ -2,33 +2,27 @@
 // the mission (uploads, starts, progress), fire fusion and re-tasking, in one
 // pure class. `Step(now, received bytes) -> bursts`; no clock, socket, file or
 // LCM. What must survive a restart comes out as journal entries for an adapter
-// to append (journal.hpp), and Server::Restore rebuilds the core from them.
+// to append (journal_format.hpp), and Server::Restore rebuilds the core from them.
 //
-// Re-tasking: when a report opens a new tentative track, the nearest searching
-// vehicle with a good link (another than the reporter when one exists: its GPS
-// error is independent) is sent to loiter around it (seed 7.4) for
-// investigate_s (after its transit there) and then resumes its lanes by itself.
-// A track that is still tentative when that investigation is over, with no report
-// from an investigator that did get near it, is rejected (the hot spot was not
-// seen again: a sun-heated rock). An investigator that never got near (called
-// away, lost) judges nothing: the track stays tentative.
+// Re-tasking: when a report opens a new tentative track, a vehicle is sent to
+// loiter around it (seed 7.4) for investigate_s (after its transit there) and
+// then resumes its lanes by itself; its verdict may reject the track.
+// investigations.hpp says which vehicle is chosen, how the no-fly zones limit
+// it and when a track is rejected; when no vehicle can go, none is sent and the
+// reason is journaled.
 //
 // A lost drone: when a flying drone has not been heard for the registry's lost
 // time, its remaining lanes go to the drones still searching (server_handover.cpp).
 //
 // No-fly zones (ServerConfig::no_fly): the legs the server makes up keep out of
 // them as the planner's do. A taker's joins to the lanes it is handed go around
-// them (planner::TransitPlanner), and a vehicle is sent to investigate only when
-// the convex hull of where it is and the circle enters none (its straight way
-// there, the circle, and its straight way back to its lane); when no
-// vehicle can go, none is sent and the reason is journaled (server_airspace.cpp).
+// them (planner::TransitPlanner), and investigations keep out of them too.
 #pragma once
 
 #include <cstdint>
 #include <limits>
 #include <map>
 #include <memory>
-#include <nlohmann/json.hpp>
 #include <optional>
 #include <span>
 #include <string>
@@ -40,7 +34,11 @@
 #include "fireswarm/radio/master_scheduler.hpp"
 #include "fireswarm/server/fire_fusion.hpp"
 #include "fireswarm/server/handover.hpp"
+#include "fireswarm/server/investigations.hpp"
+#include "fireswarm/server/journal_entry.hpp"
 #include "fireswarm/server/mission_manager.hpp"
+#include "fireswarm/server/mission_state.hpp"
+#include "fireswarm/server/operator_command.hpp"
 #include "fireswarm/server/vehicle_registry.hpp"
 
 namespace fireswarm::server {
@@ -79,57 +77,6 @@ struct ServerConfig {
   void Validate() const;
 };
 
-/// An operator's order (lcmtypes/operator_command_t.lcm's commands).
-struct OperatorCommand {
-  enum class Kind : std::uint8_t {
-    kStart = 1,
-    kAbort = 2,
-    kReturnAll = 3,
-    kInvestigatePoint = 4,
-    kRetaskVehicle = 5,
-  };
-  Kind kind = Kind::kStart;
-  std::uint8_t vehicle = 0;  ///< kRetaskVehicle (required), kInvestigatePoint (0 = server chooses)
-  common::LatLon point;      ///< kInvestigatePoint, kRetaskVehicle
-  double radius_m = 0.0;     ///< 0 = the configured radius
-  std::string reason;        ///< for the journal
-};
-
-enum class MissionState : std::int8_t {  // mission_status_t's STATE_* values
-  kIdle = 0,
-  kUploading = 1,
-  kRunning = 2,
-  kReturning = 3,
-  kComplete = 4,
-  kAborted = 5,
-};
-const char* ToString(MissionState state);
-
-/// One thing that must survive a restart: appended by the journal adapter as
-/// (time, kind, data), handed back to Server::Restore in the same order.
-struct JournalEntry {
-  double t_s = 0.0;
-  std::string kind;
-  nlohmann::json data;
-};
-
-/// An investigation the server ordered.
-struct Investigation {
-  std::uint8_t vehicle = 0;
-  std::int32_t track_id = 0;  ///< 0: an operator's point, not a track
-  double started_s = 0.0;
-  /// When the vehicle stops circling: the order's time, the transit to the circle
-  /// at investigate_transit_mps, and investigate_s around it.
-  double until_s = 0.0;
-  /// The point circled, local (north, east) m.
-  Eigen::Vector2d point_ne_m = Eigen::Vector2d::Zero();
-  /// Closest the vehicle's telemetry came to the point during the investigation, m.
-  double closest_m = std::numeric_limits<double>::infinity();
-  /// The verdict on its track has been drawn (rejected, seen again, or not
-  /// judged because the vehicle never got near): the server no longer waits.
-  bool judged = false;
-};
-
 class Server {
  public:
   /// `frame`: the local frame fire positions are fused in (the mission area's).
@@ -161,8 +108,9 @@ class Server {
   /// fire report (tracks come back with their IDs) and rejection. The radio's
   /// sequence numbers restart half their range away from the last journaled one
   /// (every entry records it), so no vehicle mistakes a new request for a resend
-  /// of the last one it answered. Throws
-  /// std::runtime_error naming the entry (its index and kind) when one is malformed.
+  /// of the last one it answered. Throws std::runtime_error naming the entry (its
+  /// index and kind) when one does not fit the ones before (a phase before any
+  /// mission, an unknown vehicle).
   static Server Restore(const ServerConfig& config, const common::LocalFrame& frame,
                         const std::vector<JournalEntry>& entries);
 
@@ -171,7 +119,7 @@ class Server {
   const FireFusion& fusion() const { return fusion_; }
   const MissionManager* mission() const { return mission_ ? &*mission_ : nullptr; }
   const radio::MasterScheduler& scheduler() const { return *scheduler_; }
-  const std::vector<Investigation>& investigations() const { return investigations_; }
+  const std::vector<Investigation>& investigations() const { return investigations_.all(); }
   const common::LocalFrame& frame() const { return frame_; }
   /// Mission time of the first receipt of each (vehicle, report ID), s.
   const std::map<std::pair<std::uint8_t, std::uint16_t>, double>& report_receipts() const {
@@ -189,25 +137,15 @@ class Server {
                    double now_s);
   void Investigate(std::uint8_t vehicle, common::LatLon point, double radius_m,
                    std::int32_t track_id, double now_s);
-  static std::unique_ptr<const planner::TransitPlanner> TransitFor(const ServerConfig& config);
-  double InvestigateRadiusM(double ordered_radius_m) const;
-  std::optional<std::string> CircleRefusal(const Eigen::Vector2d& point_ne_m,
-                                           double radius_m) const;
-  std::optional<std::string> ApproachRefusal(std::uint8_t vehicle,
-                                             const Eigen::Vector2d& point_ne_m,
-                                             double radius_m) const;
-  std::optional<std::uint8_t> BestPlacedFor(const Eigen::Vector2d& point_ne_m, double radius_m,
-                                            std::uint8_t reporter, double now_s,
-                                            std::string* why_none) const;
   void SendToAll(radio::CommandType type);
   void HandOverLostDrones(double now_s);
   void HandOver(std::uint8_t lost, double now_s);
   void RecallHandedOverDrones(double now_s);
   std::vector<Taker> TakersFor(std::uint8_t lost, double now_s) const;
-  radio::Nanos VerdictDue(const Investigation& investigation) const;
   void CheckInvestigations(radio::Nanos now);
   void UpdateState(double now_s);
-  void Record(double t_s, std::string kind, nlohmann::json data);
+  void Record(double t_s, JournalEvent event);
+  void Replay(const JournalEntry& entry);
 
   ServerConfig config_;
   common::LocalFrame frame_;
@@ -215,10 +153,10 @@ class Server {
   std::unique_ptr<radio::MasterScheduler> scheduler_;
   VehicleRegistry registry_;
   FireFusion fusion_;
+  Investigations investigations_;  // holds transit_.get(): declared after it
   std::optional<MissionManager> mission_;
   MissionState state_ = MissionState::kIdle;
   double mission_started_s_ = 0.0;
-  std::vector<Investigation> investigations_;
   // Drones given up as lost whose lanes went to others -> ordered home since
   // they were heard again (server_handover.cpp).
   std::map<std::uint8_t, bool> handed_over_;

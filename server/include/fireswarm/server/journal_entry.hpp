@@ -1,0 +1,107 @@
+// What the server core journals: one typed event per thing that must survive a
+// restart, as radio::SchedulerEvent is for the radio. Server produces them
+// (TakeJournalEntries) and Server::Restore rebuilds itself from them; how they
+// are written to and read from the journal file is journal_format.hpp's business.
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "fireswarm/common/local_frame.hpp"
+#include "fireswarm/server/fire_fusion.hpp"
+#include "fireswarm/server/mission_manager.hpp"
+#include "fireswarm/server/mission_state.hpp"
+#include "fireswarm/server/operator_command.hpp"
+
+namespace fireswarm::server {
+
+/// A vehicle was registered.
+struct VehicleAdded {
+  int id = 0;  ///< receiver ID
+  friend bool operator==(const VehicleAdded&, const VehicleAdded&) = default;
+};
+
+/// The mission was loaded, one drone mission per vehicle.
+struct MissionLoaded {
+  std::vector<DroneMission> drones;
+};
+
+/// An operator command was carried out (start, abort, return all, or an
+/// investigation order). The radius is not journaled: the investigation that
+/// follows an order carries what the vehicle was told.
+struct CommandAccepted {
+  OperatorCommand::Kind command = OperatorCommand::Kind::kStart;
+  std::uint8_t vehicle = 0;
+  common::LatLon point;
+  std::string reason;
+};
+
+/// A drone's phase changed.
+struct PhaseChanged {
+  std::uint8_t vehicle = 0;
+  DronePhase phase = DronePhase::kUploading;
+};
+
+/// A lost drone was given up and its lanes went to others as new missions.
+struct LanesHandedOver {
+  std::uint8_t lost = 0;
+  std::string why;
+  std::vector<DroneMission> drones;  ///< the takers' new missions
+  /// Joins that could not be routed around the no-fly zones (0: none, not journaled).
+  int straight_joins = 0;
+};
+
+/// The mission's state changed by itself (all started, all over).
+struct MissionStateChanged {
+  MissionState state = MissionState::kIdle;
+};
+
+/// A fire report was fused (neither a duplicate nor invalid).
+struct ReportFused {
+  FireObservation observation;
+};
+
+/// An investigation's verdict rejected a track.
+struct TrackRejected {
+  std::int32_t track_id = 0;
+  std::uint8_t by_vehicle = 0;
+};
+
+/// An investigation was ordered; it started at the entry's time.
+struct InvestigationOpened {
+  std::uint8_t vehicle = 0;
+  std::int32_t track_id = 0;                             ///< 0: an operator's point
+  double until_s = 0.0;                                  ///< mission time its circling ends, s
+  Eigen::Vector2d point_en_m = Eigen::Vector2d::Zero();  ///< local (east, north) m
+};
+
+/// A new track got no investigator, and why (for the operator; nothing to rebuild).
+struct InvestigationNotSent {
+  std::int32_t track_id = 0;
+  std::string why;
+};
+
+/// A drone given up as lost was heard again and ordered home.
+struct DroneRecalled {
+  std::uint8_t vehicle = 0;
+  std::string why;
+};
+
+using JournalEvent = std::variant<VehicleAdded, MissionLoaded, CommandAccepted, PhaseChanged,
+                                  LanesHandedOver, MissionStateChanged, ReportFused, TrackRejected,
+                                  InvestigationOpened, InvestigationNotSent, DroneRecalled>;
+
+/// One thing that must survive a restart, in the order it happened.
+struct JournalEntry {
+  double t_s = 0.0;  ///< mission time, s
+  /// The radio's next sequence number when it was recorded: a restored server
+  /// starts half the sequence space away from the last one. nullopt: unknown.
+  std::optional<std::uint16_t> radio_seq;
+  JournalEvent event;
+};
+
+}  // namespace fireswarm::server

@@ -1,0 +1,261 @@
+// The server's journal entries as journal records: kind names and JSON data
+// (journal_format.hpp lists them). The only place that JSON is written or read.
+#include "fireswarm/server/journal_format.hpp"
+
+#include <stdexcept>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+#include "fireswarm/server/north_east.hpp"
+
+namespace fireswarm::server {
+
+namespace {
+
+constexpr const char* kRadioSequenceKey = "radio_seq";
+
+template <class... Ts>
+struct Overloaded : Ts... {
+  using Ts::operator()...;
+};
+
+nlohmann::json WaypointsJson(const std::vector<radio::Waypoint>& waypoints) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const radio::Waypoint& w : waypoints) {
+    list.push_back({w.lat_deg, w.lon_deg, w.altitude_m, w.speed_mps, w.flags});
+  }
+  return list;
+}
+
+std::vector<radio::Waypoint> WaypointsFrom(const nlohmann::json& list) {
+  std::vector<radio::Waypoint> waypoints;
+  for (const nlohmann::json& item : list) {
+    radio::Waypoint w;
+    w.lat_deg = item.at(0).get<double>();
+    w.lon_deg = item.at(1).get<double>();
+    w.altitude_m = item.at(2).get<double>();
+    w.speed_mps = item.at(3).get<double>();
+    w.flags = item.at(4).get<std::uint8_t>();
+    waypoints.push_back(w);
+  }
+  return waypoints;
+}
+
+nlohmann::json MissionsJson(const std::vector<DroneMission>& missions) {
+  nlohmann::json drones = nlohmann::json::array();
+  for (const DroneMission& m : missions) {
+    drones.push_back({{"vehicle", m.vehicle},
+                      {"mission_id", m.mission_id},
+                      {"waypoints", WaypointsJson(m.waypoints)}});
+  }
+  return drones;
+}
+
+std::vector<DroneMission> MissionsFrom(const nlohmann::json& drones) {
+  std::vector<DroneMission> missions;
+  for (const nlohmann::json& drone : drones) {
+    DroneMission m;
+    m.vehicle = drone.at("vehicle").get<std::uint8_t>();
+    m.mission_id = drone.at("mission_id").get<std::uint16_t>();
+    m.waypoints = WaypointsFrom(drone.at("waypoints"));
+    missions.push_back(std::move(m));
+  }
+  return missions;
+}
+
+// A local (east, north) vector as the file's [north, east] pair, and back.
+nlohmann::json NorthEastJson(const Eigen::Vector2d& en_m) {
+  const Eigen::Vector2d ne_m = SwapAxes(en_m);
+  return {ne_m.x(), ne_m.y()};
+}
+
+Eigen::Vector2d FromNorthEast(const nlohmann::json& pair) {
+  return SwapAxes(Eigen::Vector2d(pair.at(0).get<double>(), pair.at(1).get<double>()));
+}
+
+nlohmann::json ObservationJson(const FireObservation& o) {
+  return {{"vehicle", o.vehicle_id},
+          {"report_id", o.report_id},
+          {"detection_s", o.detection_time_s},
+          {"position_ne_m", NorthEastJson(o.position_en_m)},
+          {"covariance_ne_m2", NorthEastTriangle(o.covariance_en_m2)},
+          {"observer_ne_m", NorthEastJson(o.observer_en_m)},
+          {"confidence", o.confidence}};
+}
+
+FireObservation ObservationFrom(const nlohmann::json& j) {
+  FireObservation o;
+  o.vehicle_id = j.at("vehicle").get<std::uint8_t>();
+  o.report_id = j.at("report_id").get<std::uint16_t>();
+  o.detection_time_s = j.at("detection_s").get<double>();
+  o.position_en_m = FromNorthEast(j.at("position_ne_m"));
+  const nlohmann::json& c = j.at("covariance_ne_m2");
+  Eigen::Matrix2d covariance_ne_m2;
+  covariance_ne_m2 << c.at(0).get<double>(), c.at(1).get<double>(), c.at(1).get<double>(),
+      c.at(2).get<double>();
+  o.covariance_en_m2 = SwapAxes(covariance_ne_m2);
+  o.observer_en_m = FromNorthEast(j.at("observer_ne_m"));
+  o.confidence = j.at("confidence").get<double>();
+  return o;
+}
+
+const char* CommandKind(OperatorCommand::Kind command) {
+  switch (command) {
+    case OperatorCommand::Kind::kStart:
+      return "start";
+    case OperatorCommand::Kind::kAbort:
+      return "abort";
+    case OperatorCommand::Kind::kReturnAll:
+      return "return_all";
+    case OperatorCommand::Kind::kInvestigatePoint:
+    case OperatorCommand::Kind::kRetaskVehicle:
+      return "investigate_order";
+  }
+  return "command";
+}
+
+CommandAccepted CommandFrom(const nlohmann::json& data) {
+  CommandAccepted c;
+  c.command = static_cast<OperatorCommand::Kind>(data.at("command").get<int>());
+  c.vehicle = data.at("vehicle").get<std::uint8_t>();
+  c.point = {data.at("lat_deg").get<double>(), data.at("lon_deg").get<double>()};
+  c.reason = data.at("reason").get<std::string>();
+  return c;
+}
+
+// The event of a record of `kind`; throws nlohmann::json::exception for a bad
+// field and std::runtime_error for an unknown kind or a command under another's name.
+JournalEvent EventFrom(const std::string& kind, const nlohmann::json& data) {
+  if (kind == "vehicle") return VehicleAdded{data.at("id").get<int>()};
+  if (kind == "mission") return MissionLoaded{MissionsFrom(data.at("drones"))};
+  if (kind == "start" || kind == "abort" || kind == "return_all" || kind == "investigate_order") {
+    CommandAccepted command = CommandFrom(data);
+    if (kind != CommandKind(command.command)) {
+      throw std::runtime_error("kind " + kind + " holds command " +
+                               std::to_string(static_cast<int>(command.command)) + " (" +
+                               CommandKind(command.command) + ")");
+    }
+    return command;
+  }
+  if (kind == "phase") {
+    return PhaseChanged{data.at("vehicle").get<std::uint8_t>(),
+                        static_cast<DronePhase>(data.at("phase").get<int>())};
+  }
+  if (kind == "handover") {
+    LanesHandedOver handed;
+    handed.lost = data.at("lost").get<std::uint8_t>();
+    handed.why = data.at("why").get<std::string>();
+    handed.drones = MissionsFrom(data.at("drones"));
+    handed.straight_joins = data.value("straight_joins", 0);
+    return handed;
+  }
+  if (kind == "state")
+    return MissionStateChanged{static_cast<MissionState>(data.at("state").get<int>())};
+  if (kind == "report") return ReportFused{ObservationFrom(data)};
+  if (kind == "reject") {
+    return TrackRejected{data.at("track_id").get<std::int32_t>(),
+                         data.at("by_vehicle").get<std::uint8_t>()};
+  }
+  if (kind == "investigation") {
+    return InvestigationOpened{
+        data.at("vehicle").get<std::uint8_t>(), data.at("track_id").get<std::int32_t>(),
+        data.at("until_s").get<double>(), FromNorthEast(data.at("point_ne_m"))};
+  }
+  if (kind == "no_investigation") {
+    return InvestigationNotSent{data.at("track_id").get<std::int32_t>(),
+                                data.at("why").get<std::string>()};
+  }
+  if (kind == "recall") {
+    return DroneRecalled{data.at("vehicle").get<std::uint8_t>(), data.at("why").get<std::string>()};
+  }
+  throw std::runtime_error("unknown kind");
+}
+
+}  // namespace
+
+std::string JournalKindOf(const JournalEntry& entry) {
+  return std::visit(
+      Overloaded{[](const VehicleAdded&) -> std::string { return "vehicle"; },
+                 [](const MissionLoaded&) -> std::string { return "mission"; },
+                 [](const CommandAccepted& c) -> std::string { return CommandKind(c.command); },
+                 [](const PhaseChanged&) -> std::string { return "phase"; },
+                 [](const LanesHandedOver&) -> std::string { return "handover"; },
+                 [](const MissionStateChanged&) -> std::string { return "state"; },
+                 [](const ReportFused&) -> std::string { return "report"; },
+                 [](const TrackRejected&) -> std::string { return "reject"; },
+                 [](const InvestigationOpened&) -> std::string { return "investigation"; },
+                 [](const InvestigationNotSent&) -> std::string { return "no_investigation"; },
+                 [](const DroneRecalled&) -> std::string { return "recall"; }},
+      entry.event);
+}
+
+nlohmann::json JournalDataOf(const JournalEntry& entry) {
+  nlohmann::json data = std::visit(
+      Overloaded{
+          [](const VehicleAdded& e) -> nlohmann::json {
+            return {{"id", e.id}};
+          },
+          [](const MissionLoaded& e) -> nlohmann::json {
+            return {{"drones", MissionsJson(e.drones)}};
+          },
+          [](const CommandAccepted& e) -> nlohmann::json {
+            return {{"command", static_cast<int>(e.command)},
+                    {"vehicle", e.vehicle},
+                    {"lat_deg", e.point.lat_deg},
+                    {"lon_deg", e.point.lon_deg},
+                    {"reason", e.reason}};
+          },
+          [](const PhaseChanged& e) -> nlohmann::json {
+            return {{"vehicle", e.vehicle}, {"phase", static_cast<int>(e.phase)}};
+          },
+          [](const LanesHandedOver& e) -> nlohmann::json {
+            nlohmann::json handed = {
+                {"lost", e.lost}, {"why", e.why}, {"drones", MissionsJson(e.drones)}};
+            // Only when it happened, so a journal without zones reads as before.
+            if (e.straight_joins > 0) handed["straight_joins"] = e.straight_joins;
+            return handed;
+          },
+          [](const MissionStateChanged& e) -> nlohmann::json {
+            return {{"state", static_cast<int>(e.state)}};
+          },
+          [](const ReportFused& e) -> nlohmann::json { return ObservationJson(e.observation); },
+          [](const TrackRejected& e) -> nlohmann::json {
+            return {{"track_id", e.track_id}, {"by_vehicle", e.by_vehicle}};
+          },
+          [](const InvestigationOpened& e) -> nlohmann::json {
+            return {{"vehicle", e.vehicle},
+                    {"track_id", e.track_id},
+                    {"until_s", e.until_s},
+                    {"point_ne_m", NorthEastJson(e.point_en_m)}};
+          },
+          [](const InvestigationNotSent& e) -> nlohmann::json {
+            return {{"track_id", e.track_id}, {"why", e.why}};
+          },
+          [](const DroneRecalled& e) -> nlohmann::json {
+            return {{"vehicle", e.vehicle}, {"why", e.why}};
+          }},
+      entry.event);
+  if (entry.radio_seq) data[kRadioSequenceKey] = *entry.radio_seq;
+  return data;
+}
+
+JournalEntry JournalEntryOf(const JournalRecord& record) {
+  try {
+    if (!record.data.is_object()) throw std::runtime_error("data is not a JSON object");
+    JournalEntry entry{record.t_s, std::nullopt, EventFrom(record.kind, record.data)};
+    if (record.data.contains(kRadioSequenceKey)) {
+      entry.radio_seq = record.data.at(kRadioSequenceKey).get<std::uint16_t>();
+    }
+    return entry;
+  } catch (const std::exception& e) {
+    throw std::runtime_error("journal line " + std::to_string(record.seq) + " (" + record.kind +
+                             "): " + e.what());
+  }
+}
+
+std::uint64_t AppendEntry(Journal& journal, const JournalEntry& entry) {
+  return journal.Append(entry.t_s, JournalKindOf(entry), JournalDataOf(entry));
+}
+
+}  // namespace fireswarm::server

@@ -1,0 +1,191 @@
+#include "fireswarm/server/journal_format.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "fireswarm/planner/area_io.hpp"
+#include "fireswarm/server/server.hpp"
+
+namespace fireswarm::server {
+namespace {
+
+using ::testing::HasSubstr;
+
+DroneMission MissionOf(std::uint8_t vehicle, std::uint16_t mission_id) {
+  DroneMission m;
+  m.vehicle = vehicle;
+  m.mission_id = mission_id;
+  m.waypoints.push_back({46.1, -74.4, 60.0, 10.0, 1});
+  m.waypoints.push_back({46.2, -74.3, 60.0, 10.0, 0});
+  return m;
+}
+
+FireObservation Observation() {
+  FireObservation o;
+  o.vehicle_id = 3;
+  o.report_id = 17;
+  o.detection_time_s = 123.456;
+  o.position_en_m = {12.5, -40.25};
+  o.covariance_en_m2 << 9.0, 1.5, 1.5, 4.0;
+  o.observer_en_m = {2.0, -60.0};
+  o.confidence = 0.8;
+  return o;
+}
+
+// The entry read back from the record it is written as.
+JournalEntry RoundTrip(const JournalEntry& entry, std::uint64_t seq = 1) {
+  JournalRecord record;
+  record.seq = seq;
+  record.t_s = entry.t_s;
+  record.kind = JournalKindOf(entry);
+  record.data = JournalDataOf(entry);
+  // Through text, as in the file.
+  record.data = nlohmann::json::parse(record.data.dump());
+  return JournalEntryOf(record);
+}
+
+TEST(JournalFormat, EveryEventComesBackAsItWasWritten) {
+  const std::vector<JournalEntry> entries{
+      {0.0, 1, VehicleAdded{4}},
+      {0.5, 2, MissionLoaded{{MissionOf(4, 1), MissionOf(5, 1)}}},
+      {1.0, 3,
+       CommandAccepted{OperatorCommand::Kind::kRetaskVehicle, 4, {46.0, -74.5}, "look again"}},
+      {2.0, 4, PhaseChanged{4, DronePhase::kFlying}},
+      {3.0, 5, LanesHandedOver{5, "lost: not heard for 20 s", {MissionOf(4, 2)}, 2}},
+      {4.0, 6, MissionStateChanged{MissionState::kRunning}},
+      {5.0, 7, ReportFused{Observation()}},
+      {6.0, 8, TrackRejected{2, 4}},
+      {7.0, 9, InvestigationOpened{4, 2, 99.5, {30.0, -10.0}}},
+      {8.0, 10, InvestigationNotSent{3, "no searching vehicle with a working link"}},
+      {9.0, std::nullopt, DroneRecalled{5, "heard again"}},
+  };
+  for (const JournalEntry& entry : entries) {
+    const JournalEntry back = RoundTrip(entry);
+    SCOPED_TRACE(JournalKindOf(entry));
+    EXPECT_EQ(back.t_s, entry.t_s);
+    EXPECT_EQ(back.radio_seq, entry.radio_seq);
+    EXPECT_EQ(back.event.index(), entry.event.index());
+    EXPECT_EQ(JournalDataOf(back), JournalDataOf(entry));
+  }
+  const JournalEntry report_back = RoundTrip(entries[6]);
+  const auto& report = std::get<ReportFused>(report_back.event);
+  EXPECT_EQ(report.observation, Observation());
+  const JournalEntry opened_back = RoundTrip(entries[8]);
+  const auto& opened = std::get<InvestigationOpened>(opened_back.event);
+  EXPECT_EQ(opened.point_en_m, Eigen::Vector2d(30.0, -10.0));
+  const JournalEntry handed_back = RoundTrip(entries[4]);
+  const auto& handed = std::get<LanesHandedOver>(handed_back.event);
+  EXPECT_EQ(handed.drones[0].waypoints, MissionOf(4, 2).waypoints);
+  EXPECT_EQ(handed.straight_joins, 2);
+}
+
+TEST(JournalFormat, KeepsTheRecordNamesAndFieldsOfTheFormatBeforeTypes) {
+  EXPECT_EQ(JournalKindOf({0.0, 1, CommandAccepted{OperatorCommand::Kind::kStart, 0, {}, "go"}}),
+            "start");
+  EXPECT_EQ(JournalKindOf({0.0, 1, CommandAccepted{OperatorCommand::Kind::kReturnAll, 0, {}, ""}}),
+            "return_all");
+  EXPECT_EQ(JournalDataOf({0.0, 7, PhaseChanged{4, DronePhase::kFlying}}),
+            nlohmann::json({{"vehicle", 4}, {"phase", 2}, {"radio_seq", 7}}));
+  // Positions and covariances stay (north, east) in the file.
+  FireObservation o = Observation();
+  o.position_en_m = {1.0, 2.0};
+  o.covariance_en_m2 << 9.0, 1.5, 1.5, 4.0;
+  const nlohmann::json report = JournalDataOf({0.0, 1, ReportFused{o}});
+  EXPECT_EQ(report.at("position_ne_m"), nlohmann::json({2.0, 1.0}));
+  EXPECT_EQ(report.at("covariance_ne_m2"), nlohmann::json({4.0, 1.5, 9.0}));
+  // A hand-over whose joins were all routed says nothing of them.
+  EXPECT_FALSE(
+      JournalDataOf({0.0, 1, LanesHandedOver{5, "lost", {}, 0}}).contains("straight_joins"));
+}
+
+TEST(JournalFormat, ABadRecordNamesItsLineKindAndProblem) {
+  const auto error_of = [](const JournalRecord& record) -> std::string {
+    try {
+      (void)JournalEntryOf(record);
+    } catch (const std::runtime_error& e) {
+      return e.what();
+    }
+    return "no exception";
+  };
+  const std::string missing = error_of({12, 1.0, "report", {{"vehicle", 1}}});
+  EXPECT_THAT(missing, HasSubstr("journal line 12 (report): "));
+  EXPECT_THAT(missing, HasSubstr("report_id"));
+  EXPECT_THAT(error_of({3, 1.0, "teleport", nlohmann::json::object()}),
+              HasSubstr("journal line 3 (teleport): unknown kind"));
+  EXPECT_THAT(error_of({4, 1.0, "vehicle", {{"id", "one"}}}),
+              HasSubstr("journal line 4 (vehicle): "));
+  EXPECT_THAT(error_of({5, 1.0, "state", nlohmann::json::array()}),
+              HasSubstr("journal line 5 (state): data is not a JSON object"));
+  const nlohmann::json start = {
+      {"command", 1}, {"vehicle", 0}, {"lat_deg", 0.0}, {"lon_deg", 0.0}, {"reason", ""}};
+  EXPECT_THAT(error_of({6, 1.0, "abort", start}),
+              HasSubstr("journal line 6 (abort): kind abort holds command 1 (start)"));
+}
+
+// tests/server/data/journal_v0.jsonl was written by `fireswarm serve --journal`
+// before journal entries were typed and the format had a version (2 simulated
+// drones over journal_v0_area.geojson, a fire 170 m east of the launch site; the
+// server's last summary: both drones done, track 1 confirmed by both at
+// 46.50002656298229, 7.502246609823232). It must still restore.
+TEST(JournalFormat, AJournalOfTheFormatBeforeVersionsStillRestores) {
+  const std::filesystem::path data = FIRESWARM_SERVER_TEST_DATA;
+  // A copy: Open locks its file and would cut a torn line off it.
+  const std::filesystem::path copy = std::filesystem::path(::testing::TempDir()) /
+                                     ("journal_v0_" + std::to_string(::getpid()) + ".jsonl");
+  std::filesystem::copy_file(data / "journal_v0.jsonl", copy,
+                             std::filesystem::copy_options::overwrite_existing);
+  std::vector<JournalEntry> entries;
+  std::uint32_t newest_version = 0;
+  {
+    const Journal journal = Journal::Open(copy, [&](const JournalRecord& record) {
+      newest_version = std::max(newest_version, record.version);
+      entries.push_back(JournalEntryOf(record));
+    });
+    EXPECT_EQ(journal.recovery().dropped_lines, 0U);
+  }
+  std::filesystem::remove(copy);
+  ASSERT_EQ(entries.size(), 18U);
+  EXPECT_EQ(newest_version, 0U);
+
+  const common::LocalFrame frame = planner::LoadSearchArea(data / "journal_v0_area.geojson").frame;
+  const Server server = Server::Restore(ServerConfig{}, frame, entries);
+  EXPECT_EQ(server.registry().ids(), (std::vector<std::uint8_t>{1, 2}));
+  EXPECT_EQ(server.state(), MissionState::kComplete);
+  EXPECT_EQ(server.mission_started_s(), 0.0);
+  ASSERT_NE(server.mission(), nullptr);
+  for (const std::uint8_t id : {std::uint8_t{1}, std::uint8_t{2}}) {
+    EXPECT_EQ(server.mission()->progress(id).phase, DronePhase::kDone) << int{id};
+    EXPECT_EQ(server.mission()->mission_of(id).waypoints.size(), 5U) << int{id};
+  }
+  // The track with its ID, confirmed by both drones, where the old server had it.
+  ASSERT_EQ(server.fusion().tracks().size(), 1U);
+  const FireTrack& track = server.fusion().tracks()[0];
+  EXPECT_EQ(track.track_id, 1);
+  EXPECT_EQ(server.fusion().next_track_id(), 2);
+  EXPECT_EQ(track.status, FireTrackStatus::kConfirmed);
+  EXPECT_EQ(track.report_count, 4);
+  EXPECT_EQ(track.vehicle_ids, (std::vector<std::uint8_t>{1, 2}));
+  const common::LatLon at = frame.ToGeodetic({track.position_en_m.x(), track.position_en_m.y()});
+  EXPECT_NEAR(at.lat_deg, 46.50002656298229, 1e-12);
+  EXPECT_NEAR(at.lon_deg, 7.502246609823232, 1e-12);
+  EXPECT_EQ(server.report_receipts().size(), 4U);
+  // The investigation drone 1 was sent on, as it was ordered.
+  ASSERT_EQ(server.investigations().size(), 1U);
+  const Investigation& investigation = server.investigations()[0];
+  EXPECT_EQ(investigation.vehicle, 1);
+  EXPECT_EQ(investigation.track_id, 1);
+  EXPECT_EQ(investigation.started_s, 2.7644084700000002);
+  EXPECT_EQ(investigation.until_s, 82.76440847);
+  EXPECT_EQ(investigation.point_en_m, Eigen::Vector2d(0.5894692185614455, 1.21165584297034));
+  // The radio starts half its sequence space after the last journaled (64).
+  EXPECT_EQ(server.scheduler().next_sequence(), 64 + 0x8000);
+}
+
+}  // namespace
+}  // namespace fireswarm::server
