@@ -6,13 +6,14 @@
 #include <string>
 #include <vector>
 
+#include "fireswarm/common/time.hpp"
 #include "fireswarm/radio/messages.hpp"
 #include "stop_signals.hpp"
 
 namespace fireswarm::app {
 namespace {
 
-using radio::Nanos;
+using common::Nanos;
 using Clock = std::chrono::steady_clock;
 
 // The loop wakes at least this often: to see a stop signal, and operator
@@ -101,7 +102,7 @@ void ServeLoop::HandleOperatorCommands(Nanos now) {
     const bool accepted = server_.Handle(command, now, &why);
     nlohmann::ordered_json line;
     line["event"] = "operator_command";
-    line["t_s"] = radio::ToSeconds(now);
+    line["t_s"] = common::ToSeconds(now);
     line["command"] = static_cast<int>(command.kind);
     line["accepted"] = accepted;
     if (!accepted) line["why"] = why;
@@ -113,7 +114,7 @@ ServeStop ServeLoop::Run(const ServeOptions& options) {
   const Clock::time_point start = Clock::now();
   const auto now = [&] { return options.clock_offset + (Clock::now() - start); };
   // Wall time since the start; Nanos::max(): no limit.
-  const Nanos end = options.duration_s ? radio::FromSeconds(*options.duration_s) : Nanos::max();
+  const Nanos end = options.duration_s ? common::FromSeconds(*options.duration_s) : Nanos::max();
   // LCM utime: the Unix-epoch wall clock; mission time 0 is this far back.
   const std::int64_t utime_at_zero =
       UnixMicros() -
@@ -135,8 +136,8 @@ ServeStop ServeLoop::Run(const ServeOptions& options) {
     }
     FlushJournal();  // durable before anything else happens
     if (bridge_ != nullptr)
-      bridge_->Publish(server_, radio::ToSeconds(t), UnixMicros(), utime_at_zero);
-    clock_s_ = radio::ToSeconds(t);
+      bridge_->Publish(server_, common::ToSeconds(t), UnixMicros(), utime_at_zero);
+    clock_s_ = common::ToSeconds(t);
 
     const server::MissionState state = server_.state();
     if (options.until_complete && state == server::MissionState::kComplete) {
@@ -154,12 +155,12 @@ ServeStop ServeLoop::Run(const ServeOptions& options) {
     }
     Nanos next = std::min(server_.NextWakeup(), now() + kMaxWait);
     if (bridge_ != nullptr) {
-      next = std::min(next, radio::FromSeconds(std::min(bridge_->NextPublishS(), 1e9)));
+      next = std::min(next, common::FromSeconds(std::min(bridge_->NextPublishS(), 1e9)));
     }
     if (end != Nanos::max()) next = std::min(next, options.clock_offset + end);
     link_.WaitReadable(std::max(Nanos{0}, next - now()));
   }
-  wall_seconds_ = radio::ToSeconds(Clock::now() - start);
+  wall_seconds_ = common::ToSeconds(Clock::now() - start);
   return stop;
 }
 

@@ -15,6 +15,7 @@
 #include <optional>
 #include <string>
 
+#include "fireswarm/common/time.hpp"
 #include "fireswarm/radio/frame.hpp"
 #include "fireswarm/radio/link.hpp"
 #include "fireswarm/radio/parser.hpp"
@@ -26,7 +27,7 @@
 namespace fireswarm::app {
 
 struct ServeOptions {
-  radio::Nanos clock_offset{0};      ///< mission clock when the loop starts
+  common::Nanos clock_offset{0};     ///< mission clock when the loop starts
   std::optional<double> duration_s;  ///< stop after this much wall time, s
   bool until_complete = false;       ///< stop once the mission is complete or aborted
 };
@@ -54,7 +55,7 @@ class ServeLoop {
 
  private:
   void CountFrames(const radio::Burst& burst);
-  void HandleOperatorCommands(radio::Nanos now);
+  void HandleOperatorCommands(common::Nanos now);
 
   server::Server& server_;
   radio::IoLink& link_;

@@ -6,7 +6,7 @@
 #include <string>
 #include <unordered_set>
 
-#include "fireswarm/server/north_east.hpp"
+#include "fireswarm/common/north_east.hpp"
 
 namespace fireswarm::run::internal {
 namespace {
@@ -257,7 +257,7 @@ void Scorer::ScoreFires(const server::Server& server, Report& report) const {
     outcome.first_report_s = track->first_seen_s;
     outcome.confirmed_s = confirmed_s;
     outcome.vehicles = ToInts(track->vehicle_ids);
-    outcome.covariance_ne_m2 = server::NorthEastTriangle(track->covariance_en_m2);
+    outcome.covariance_ne_m2 = common::NorthEastTriangle(track->covariance_en_m2);
   }
 }
 
@@ -268,7 +268,7 @@ void Scorer::ListTracks(const server::Server& server, Report& report) const {
     out.track_id = track.track_id;
     out.status = std::string(server::ToString(track.status));
     out.position = frame.ToGeodetic({track.position_en_m.x(), track.position_en_m.y()});
-    out.covariance_ne_m2 = server::NorthEastTriangle(track.covariance_en_m2);
+    out.covariance_ne_m2 = common::NorthEastTriangle(track.covariance_en_m2);
     out.report_count = track.report_count;
     out.vehicles = ToInts(track.vehicle_ids);
     out.first_seen_s = track.first_seen_s;

@@ -10,7 +10,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "fireswarm/server/north_east.hpp"
+#include "fireswarm/common/north_east.hpp"
 
 namespace fireswarm::server {
 namespace {
@@ -36,12 +36,12 @@ bool IsValid(const FireObservation& report) {
 // come out different in the last bit in the other order), and such a bit moves a
 // fused position and with it a whole simulated mission.
 Eigen::Matrix2d WithEigenvalueFloor(const Eigen::Matrix2d& m_en, double floor_m2) {
-  const Eigen::Matrix2d m = SwapAxes(m_en);
+  const Eigen::Matrix2d m = common::SwapAxes(m_en);
   const Eigen::Matrix2d symmetric = 0.5 * (m + m.transpose());
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> solver(symmetric);
   const Eigen::Vector2d clamped = solver.eigenvalues().cwiseMax(floor_m2);
-  return SwapAxes(Eigen::Matrix2d(solver.eigenvectors() * clamped.asDiagonal() *
-                                  solver.eigenvectors().transpose()));
+  return common::SwapAxes(Eigen::Matrix2d(solver.eigenvectors() * clamped.asDiagonal() *
+                                          solver.eigenvectors().transpose()));
 }
 
 double Squared(double x) {
@@ -102,9 +102,9 @@ Estimate FuseReports(const std::vector<FireObservation>& reports, const FireFusi
   // by column, so the (0, 1) element is averaged with the (1, 0) one already
   // replaced: the two may still differ in the last bits. Done in (north, east)
   // order, as fusion was written, so every covariance stays as it was to the bit.
-  Eigen::Matrix2d covariance_ne_m2 = SwapAxes(estimate.covariance_en_m2);
+  Eigen::Matrix2d covariance_ne_m2 = common::SwapAxes(estimate.covariance_en_m2);
   covariance_ne_m2 = 0.5 * (covariance_ne_m2 + covariance_ne_m2.transpose());
-  estimate.covariance_en_m2 = SwapAxes(covariance_ne_m2);
+  estimate.covariance_en_m2 = common::SwapAxes(covariance_ne_m2);
   return estimate;
 }
 

@@ -8,16 +8,20 @@
 #include <numbers>
 #include <utility>
 
+#include "fireswarm/common/time.hpp"
+#include "fireswarm/radio/params.hpp"
 #include "local_point.hpp"
 
 namespace fireswarm::server {
 
 namespace {
 
-// The vehicle's own loiter radius parameter (agents' investigate.radius_m) is
-// 20 m by default; the server does not read it back, so it checks that radius
-// when neither the order nor the configuration gives one, m.
-constexpr double kVehicleLoiterRadiusM = 20.0;
+// The radius the vehicle circles at when the order gives none: its loiter radius
+// parameter (investigate.radius_m). The server does not read a vehicle's value
+// back, so it checks the parameter's default, m.
+double VehicleLoiterRadiusM() {
+  return radio::SpecOf(radio::ParamId::kLoiterRadiusM).default_value;
+}
 // Sides of the polygon that stands for a circle, drawn around it.
 constexpr int kCircleSides = 32;
 
@@ -53,7 +57,7 @@ Investigations::Investigations(InvestigationsConfig config, const common::LocalF
 
 double Investigations::RadiusM(double ordered_radius_m) const {
   if (ordered_radius_m > 0.0) return ordered_radius_m;
-  return config_.investigate_radius_m > 0.0 ? config_.investigate_radius_m : kVehicleLoiterRadiusM;
+  return config_.investigate_radius_m > 0.0 ? config_.investigate_radius_m : VehicleLoiterRadiusM();
 }
 
 std::optional<std::string> Investigations::CircleRefusal(const Eigen::Vector2d& point_en_m,
@@ -176,11 +180,11 @@ std::vector<std::uint8_t> Investigations::EndForConfirmed(std::int32_t track_id,
   return ended;
 }
 
-radio::Nanos Investigations::VerdictDue(const Investigation& investigation) const {
-  return radio::FromSeconds(investigation.until_s + config_.reject_grace_s);
+common::Nanos Investigations::VerdictDue(const Investigation& investigation) const {
+  return common::FromSeconds(investigation.until_s + config_.reject_grace_s);
 }
 
-std::vector<Rejection> Investigations::Judge(radio::Nanos now, FireFusion& fusion) {
+std::vector<Rejection> Investigations::Judge(common::Nanos now, FireFusion& fusion) {
   std::vector<Rejection> rejections;
   for (Investigation& i : investigations_) {
     // Compared in the clock's own units: NextVerdict() asks for exactly VerdictDue(),
@@ -201,7 +205,7 @@ std::vector<Rejection> Investigations::Judge(radio::Nanos now, FireFusion& fusio
   return rejections;
 }
 
-radio::Nanos Investigations::NextVerdict(const FireFusion& fusion, radio::Nanos next) const {
+common::Nanos Investigations::NextVerdict(const FireFusion& fusion, common::Nanos next) const {
   for (const Investigation& i : investigations_) {
     if (i.track_id == 0 || i.judged) continue;
     const FireTrack* track = fusion.Find(i.track_id);

@@ -7,7 +7,7 @@
 #include <utility>
 #include <vector>
 
-#include "fireswarm/server/north_east.hpp"
+#include "fireswarm/common/north_east.hpp"
 
 namespace fireswarm::server {
 
@@ -66,12 +66,12 @@ std::vector<DroneMission> MissionsFrom(const nlohmann::json& drones) {
 
 // A local (east, north) vector as the file's [north, east] pair, and back.
 nlohmann::json NorthEastJson(const Eigen::Vector2d& en_m) {
-  const Eigen::Vector2d ne_m = SwapAxes(en_m);
+  const Eigen::Vector2d ne_m = common::SwapAxes(en_m);
   return {ne_m.x(), ne_m.y()};
 }
 
 Eigen::Vector2d FromNorthEast(const nlohmann::json& pair) {
-  return SwapAxes(Eigen::Vector2d(pair.at(0).get<double>(), pair.at(1).get<double>()));
+  return common::SwapAxes(Eigen::Vector2d(pair.at(0).get<double>(), pair.at(1).get<double>()));
 }
 
 nlohmann::json ObservationJson(const FireObservation& o) {
@@ -79,7 +79,7 @@ nlohmann::json ObservationJson(const FireObservation& o) {
           {"report_id", o.report_id},
           {"detection_s", o.detection_time_s},
           {"position_ne_m", NorthEastJson(o.position_en_m)},
-          {"covariance_ne_m2", NorthEastTriangle(o.covariance_en_m2)},
+          {"covariance_ne_m2", common::NorthEastTriangle(o.covariance_en_m2)},
           {"observer_ne_m", NorthEastJson(o.observer_en_m)},
           {"confidence", o.confidence}};
 }
@@ -94,7 +94,7 @@ FireObservation ObservationFrom(const nlohmann::json& j) {
   Eigen::Matrix2d covariance_ne_m2;
   covariance_ne_m2 << c.at(0).get<double>(), c.at(1).get<double>(), c.at(1).get<double>(),
       c.at(2).get<double>();
-  o.covariance_en_m2 = SwapAxes(covariance_ne_m2);
+  o.covariance_en_m2 = common::SwapAxes(covariance_ne_m2);
   o.observer_en_m = FromNorthEast(j.at("observer_ne_m"));
   o.confidence = j.at("confidence").get<double>();
   return o;

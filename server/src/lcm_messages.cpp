@@ -4,17 +4,17 @@
 #include <stdexcept>
 #include <string>
 
+#include "fireswarm/common/north_east.hpp"
+#include "fireswarm/common/time.hpp"
 #include "fireswarm/server/lcm_bridge.hpp"
-#include "fireswarm/server/north_east.hpp"
 
 namespace fireswarm::server {
 
 namespace {
 
-constexpr double kMicrosPerSecond = 1e6;
-
 std::int64_t Utime(std::int64_t utime_at_zero, double seconds) {
-  return utime_at_zero + static_cast<std::int64_t>(std::llround(seconds * kMicrosPerSecond));
+  return utime_at_zero +
+         static_cast<std::int64_t>(std::llround(seconds * common::kMicrosPerSecond));
 }
 
 }  // namespace
@@ -78,7 +78,7 @@ fire_track_list_t ToFireTrackList(const Server& server, std::int64_t utime,
     m.lat_deg = where.lat_deg;
     m.lon_deg = where.lon_deg;
     // fire_track_t's covariance is (north, east).
-    const Eigen::Matrix2d covariance_ne_m2 = SwapAxes(track.covariance_en_m2);
+    const Eigen::Matrix2d covariance_ne_m2 = common::SwapAxes(track.covariance_en_m2);
     for (int r = 0; r < 2; ++r) {
       for (int c = 0; c < 2; ++c) m.covariance_m2[r][c] = covariance_ne_m2(r, c);
     }
@@ -127,8 +127,8 @@ radio_stats_t ToRadioStats(const Server& server, double now_s, std::int64_t utim
     // Turnarounds and idle slots are not counted, so this is a lower bound.
     const radio::LinkTiming& timing = server.scheduler().config().timing;
     const double airtime_s =
-        radio::ToSeconds(timing.AirtimeOf((server.bytes_sent() - previous.bytes_sent) +
-                                          (server.bytes_received() - previous.bytes_received)));
+        common::ToSeconds(timing.AirtimeOf((server.bytes_sent() - previous.bytes_sent) +
+                                           (server.bytes_received() - previous.bytes_received)));
     m.busy_fraction = std::clamp(airtime_s / window_s, 0.0, 1.0);
   }
   m.frames_sent = static_cast<std::int64_t>(stats.polls + stats.schedules + stats.requests_sent +

@@ -6,6 +6,7 @@
 #include <utility>
 #include <variant>
 
+#include "fireswarm/common/time.hpp"
 #include "fireswarm/radio/mission_chunks.hpp"
 
 namespace fireswarm::server {
@@ -171,7 +172,7 @@ void MissionManager::SendStart(Drone& drone) {
   start.type = radio::CommandType::kStartMission;
   start.mission_id = drone.mission.mission_id;
   drone.progress.phase = DronePhase::kStarting;
-  drone.retry_start_at = radio::Nanos::max();
+  drone.retry_start_at = common::Nanos::max();
   pending_[scheduler_.SendCommand(drone.mission.vehicle, start)] =
       Pending{drone.mission.vehicle, -1};
 }
@@ -179,7 +180,7 @@ void MissionManager::SendStart(Drone& drone) {
 void MissionManager::Fail(Drone& drone, std::string why) {
   drone.progress.phase = DronePhase::kFailed;
   drone.progress.failure = std::move(why);
-  drone.retry_start_at = radio::Nanos::max();
+  drone.retry_start_at = common::Nanos::max();
 }
 
 void MissionManager::OnEvent(const radio::SchedulerEvent& event) {
@@ -233,7 +234,7 @@ void MissionManager::OnFinished(const radio::RequestFinished& finished) {
     return;
   }
   ++drone.progress.start_refusals;
-  drone.retry_start_at = finished.finished + radio::FromSeconds(config_.start_retry_s);
+  drone.retry_start_at = finished.finished + common::FromSeconds(config_.start_retry_s);
 }
 
 void MissionManager::OnTelemetry(const radio::TelemetryReceived& received) {
@@ -247,7 +248,7 @@ void MissionManager::OnTelemetry(const radio::TelemetryReceived& received) {
   if (telemetry.mode == radio::FlightMode::kLanded) drone.progress.phase = DronePhase::kDone;
 }
 
-void MissionManager::Step(radio::Nanos now) {
+void MissionManager::Step(common::Nanos now) {
   for (auto& [vehicle, drone] : drones_) {
     if (drone.progress.phase == DronePhase::kStarting && drone.retry_start_at <= now) {
       SendStart(drone);
@@ -255,8 +256,8 @@ void MissionManager::Step(radio::Nanos now) {
   }
 }
 
-radio::Nanos MissionManager::NextWakeup() const {
-  radio::Nanos next = radio::Nanos::max();
+common::Nanos MissionManager::NextWakeup() const {
+  common::Nanos next = common::Nanos::max();
   for (const auto& [vehicle, drone] : drones_) next = std::min(next, drone.retry_start_at);
   return next;
 }
@@ -265,7 +266,7 @@ void MissionManager::RestorePhase(std::uint8_t vehicle, DronePhase phase) {
   Drone& drone = Find(vehicle);
   drone.progress.phase = phase;
   if (phase != DronePhase::kUploading) drone.progress.chunks_acked = drone.chunks.size();
-  drone.retry_start_at = phase == DronePhase::kStarting ? radio::Nanos{0} : radio::Nanos::max();
+  drone.retry_start_at = phase == DronePhase::kStarting ? common::Nanos{0} : common::Nanos::max();
 }
 
 const DroneProgress& MissionManager::progress(std::uint8_t vehicle) const {

@@ -12,19 +12,19 @@
 #include <utility>
 #include <variant>
 
+#include "fireswarm/common/time.hpp"
 #include "local_point.hpp"
 
 namespace fireswarm::server {
 
 namespace {
 
-constexpr double kMillisPerSecond = 1e3;
 // Room the transit planner keeps around the no-fly zones for its sampling, m (it
 // grows its box to each query's endpoints as well).
 constexpr double kTransitMarginM = 1'000.0;
 
-double Seconds(radio::Nanos t) {
-  return radio::ToSeconds(t);
+double Seconds(common::Nanos t) {
+  return common::ToSeconds(t);
 }
 
 const ServerConfig& Validated(const ServerConfig& config) {
@@ -115,7 +115,7 @@ void Server::AddVehicle(int receiver_id, double now_s) {
   // Stagger the first telemetry turns so a fleet does not ask all at once.
   const auto index = static_cast<double>(registry_.size() - 1);
   scheduler_->AddVehicle(static_cast<std::uint8_t>(receiver_id), config_.telemetry_hz,
-                         radio::FromSeconds(index * 0.05));
+                         common::FromSeconds(index * 0.05));
   Record(now_s, VehicleAdded{receiver_id});
 }
 
@@ -132,7 +132,7 @@ void Server::LoadMission(std::vector<DroneMission> missions, double now_s) {
   Record(now_s, std::move(loaded));
 }
 
-bool Server::Handle(const OperatorCommand& command, radio::Nanos now, std::string* why) {
+bool Server::Handle(const OperatorCommand& command, common::Nanos now, std::string* why) {
   const double now_s = Seconds(now);
   const auto refuse = [&](std::string reason) {
     if (why != nullptr) *why = std::move(reason);
@@ -208,7 +208,7 @@ void Server::Investigate(std::uint8_t vehicle, common::LatLon point, double radi
                                     order.investigation.point_en_m});
 }
 
-std::vector<radio::Burst> Server::Step(radio::Nanos now, std::span<const std::uint8_t> received) {
+std::vector<radio::Burst> Server::Step(common::Nanos now, std::span<const std::uint8_t> received) {
   const double now_s = Seconds(now);
   if (mission_) mission_->Step(now);
   std::vector<radio::Burst> bursts = scheduler_->Step(now, received);
@@ -222,8 +222,8 @@ std::vector<radio::Burst> Server::Step(radio::Nanos now, std::span<const std::ui
   return bursts;
 }
 
-radio::Nanos Server::NextWakeup() const {
-  radio::Nanos next = scheduler_->NextWakeup();
+common::Nanos Server::NextWakeup() const {
+  common::Nanos next = scheduler_->NextWakeup();
   if (mission_) next = std::min(next, mission_->NextWakeup());
   return investigations_.NextVerdict(fusion_, next);
 }
@@ -235,7 +235,7 @@ void Server::OnEvent(const radio::SchedulerEvent& event, double now_s) {
         LocalM(frame_, {telemetry->telemetry.lat_deg, telemetry->telemetry.lon_deg});
     investigations_.OnPosition(telemetry->vehicle, where, now_s);
     clock_offset_s_[telemetry->vehicle] =
-        now_s - static_cast<double>(telemetry->telemetry.time_ms) / kMillisPerSecond;
+        now_s - static_cast<double>(telemetry->telemetry.time_ms) / common::kMillisPerSecond;
   } else if (const auto* report = std::get_if<radio::FireReportReceived>(&event)) {
     registry_.OnReply(report->vehicle, now_s);
     OnFireReport(*report, now_s);
@@ -260,11 +260,11 @@ void Server::OnEvent(const radio::SchedulerEvent& event, double now_s) {
 void Server::OnFireReport(const radio::FireReportReceived& received, double now_s) {
   // The report's time is the vehicle's clock; telemetry gave its offset to ours.
   const auto offset = clock_offset_s_.find(received.vehicle);
-  const double detection_s =
-      offset == clock_offset_s_.end()
-          ? now_s
-          : std::min(now_s, static_cast<double>(received.report.time_ms) / kMillisPerSecond +
-                                offset->second);
+  const double detection_s = offset == clock_offset_s_.end()
+                                 ? now_s
+                                 : std::min(now_s, static_cast<double>(received.report.time_ms) /
+                                                           common::kMillisPerSecond +
+                                                       offset->second);
   const FireObservation observation = ObservationFromReport(received.report, frame_, detection_s);
   report_receipts_.emplace(std::make_pair(received.vehicle, received.report.report_id), now_s);
   const FireReportResult result = fusion_.Add(observation);
@@ -309,7 +309,7 @@ void Server::AfterFusion(const FireObservation& observation, const FireReportRes
   Investigate(*vehicle, point, 0.0, result.track_id, now_s);
 }
 
-void Server::CheckInvestigations(radio::Nanos now) {
+void Server::CheckInvestigations(common::Nanos now) {
   const double now_s = Seconds(now);
   for (const Rejection& rejection : investigations_.Judge(now, fusion_)) {
     Record(now_s, TrackRejected{rejection.track_id, rejection.by_vehicle});

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "fireswarm/common/time.hpp"
 #include "fireswarm/radio/channel.hpp"
 #include "fireswarm/radio/link.hpp"
 #include "fireswarm/radio/master_scheduler.hpp"
@@ -21,7 +22,7 @@
 
 namespace fireswarm::server::testing {
 
-using radio::Nanos;
+using common::Nanos;
 
 // The radio side of a vehicle: stores chunks as the APOne mission store does
 // (complete when every chunk is in) and refuses the start `refusals` times, as a

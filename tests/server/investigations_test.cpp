@@ -8,10 +8,12 @@
 #include <string>
 #include <vector>
 
+#include "fireswarm/common/time.hpp"
+
 namespace fireswarm::server {
 namespace {
 
-using radio::Nanos;
+using common::Nanos;
 using ::testing::HasSubstr;
 
 const common::LocalFrame kFrame{common::LatLon{46.0, -74.5}};
@@ -175,7 +177,7 @@ TEST(Investigations, RejectsATrackTheInvestigatorDidNotSeeAgain) {
   const InvestigationOrder order =
       f.investigations->Open(f.registry, 2, kFrame.ToGeodetic({150.0, 0.0}), 0.0, track, 2.0);
   f.investigations->OnPosition(2, Local(160.0, 0.0), 30.0);  // it got there
-  const Nanos due = radio::FromSeconds(order.investigation.until_s + f.config.reject_grace_s);
+  const Nanos due = common::FromSeconds(order.investigation.until_s + f.config.reject_grace_s);
   EXPECT_EQ(f.investigations->NextVerdict(fusion, Nanos::max()), due);
   EXPECT_TRUE(f.investigations->Judge(due - Nanos{1}, fusion).empty());
   const std::vector<Rejection> rejected = f.investigations->Judge(due, fusion);
@@ -197,7 +199,7 @@ TEST(Investigations, KeepsATrackTheInvestigatorSawAgain) {
   f.investigations->OnPosition(1, Local(150.0, 10.0), 10.0);
   TrackAt(fusion, 151.0, 0.0, 1, 12.0, 2);
   ASSERT_EQ(fusion.Find(track)->status, FireTrackStatus::kTentative);
-  EXPECT_TRUE(f.investigations->Judge(radio::FromSeconds(1'000.0), fusion).empty());
+  EXPECT_TRUE(f.investigations->Judge(common::FromSeconds(1'000.0), fusion).empty());
   EXPECT_EQ(fusion.Find(track)->status, FireTrackStatus::kTentative);
   EXPECT_TRUE(f.investigations->all()[0].judged);
 }
@@ -210,7 +212,7 @@ TEST(Investigations, JudgesNothingWhenTheInvestigatorNeverGotNear) {
   f.investigations->OnPosition(3, Local(1'000.0, 0.0), 30.0);  // still far away
   // A position after the investigation ended does not count.
   f.investigations->OnPosition(3, Local(150.0, 0.0), 10'000.0);
-  EXPECT_TRUE(f.investigations->Judge(radio::FromSeconds(20'000.0), fusion).empty());
+  EXPECT_TRUE(f.investigations->Judge(common::FromSeconds(20'000.0), fusion).empty());
   EXPECT_EQ(fusion.Find(track)->status, FireTrackStatus::kTentative);
   EXPECT_TRUE(f.investigations->all()[0].judged);
 }

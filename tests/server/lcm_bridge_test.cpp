@@ -16,12 +16,13 @@
 #include <random>
 #include <string>
 
+#include "fireswarm/common/time.hpp"
 #include "server/fake_fleet.hpp"
 
 namespace fireswarm::server {
 namespace {
 
-using radio::Nanos;
+using common::Nanos;
 using testing::Air;
 
 const common::LocalFrame kFrame{common::LatLon{46.0, -74.5}};

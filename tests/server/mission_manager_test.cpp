@@ -7,12 +7,13 @@
 #include <span>
 #include <vector>
 
+#include "fireswarm/common/time.hpp"
 #include "server/fake_fleet.hpp"
 
 namespace fireswarm::server {
 namespace {
 
-using radio::Nanos;
+using common::Nanos;
 using testing::Air;
 using testing::FakeVehicle;
 
@@ -94,7 +95,7 @@ TEST(MissionManager, AsksARefusedStartAgainUntilTheVehicleAccepts) {
   EXPECT_EQ(manager.progress(3).phase, DronePhase::kFlying);
   EXPECT_EQ(manager.progress(3).start_refusals, 2);
   // Two refusals, each followed by the configured wait before asking again.
-  EXPECT_GE(end, 2 * radio::FromSeconds(MissionManagerConfig{}.start_retry_s));
+  EXPECT_GE(end, 2 * common::FromSeconds(MissionManagerConfig{}.start_retry_s));
 }
 
 TEST(MissionManager, CompletesTheUploadOnALossyChannel) {

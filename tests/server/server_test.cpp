@@ -10,13 +10,14 @@
 #include <variant>
 #include <vector>
 
+#include "fireswarm/common/time.hpp"
 #include "fireswarm/server/journal_format.hpp"
 #include "server/fake_fleet.hpp"
 
 namespace fireswarm::server {
 namespace {
 
-using radio::Nanos;
+using common::Nanos;
 using testing::Air;
 using testing::FakeVehicle;
 
@@ -112,7 +113,7 @@ TEST(Server, UploadsStartsAndRunsTheMission) {
     EXPECT_EQ(fleet.air.vehicle(id).starts_accepted(), 1);
   }
   fleet.RunFor(5 * kSecond);
-  EXPECT_EQ(fleet.server.registry().LinkAt(2, radio::ToSeconds(fleet.air.channel.now())),
+  EXPECT_EQ(fleet.server.registry().LinkAt(2, common::ToSeconds(fleet.air.channel.now())),
             LinkState::kOk);
 }
 
@@ -405,7 +406,7 @@ TEST(Server, ALostDronesLanesGoToTheOthersAsNewMissions) {
            server.mission()->mission_of(3).mission_id != 1;
   });
   const double lost_after_s = ServerConfig{}.link.lost_after_s;
-  EXPECT_GE(radio::ToSeconds(air.channel.now() - gone_at), lost_after_s);
+  EXPECT_GE(common::ToSeconds(air.channel.now() - gone_at), lost_after_s);
   ASSERT_EQ(server.mission()->progress(2).phase, DronePhase::kFailed);
   EXPECT_NE(server.mission()->progress(2).failure.find("lost"), std::string::npos);
   // Each of the others stores and started its new mission: its own lanes, then one of 2's.

@@ -7,7 +7,7 @@
 // (common::LocalFrame); vectors and covariances are ordered (east, north),
 // index 0 = east, 1 = north, as common::EastNorth and the planner. The vehicles'
 // reports and fire_track_t give sigmas and covariances north first: converted
-// in ObservationFromReport and north_east.hpp.
+// in ObservationFromReport and common/north_east.hpp.
 //
 // Why a per-vehicle bias term (and not covariance intersection, nor treating
 // every report as independent):

@@ -29,6 +29,7 @@
 #include <vector>
 
 #include "fireswarm/common/local_frame.hpp"
+#include "fireswarm/common/time.hpp"
 #include "fireswarm/planner/geometry.hpp"
 #include "fireswarm/planner/transit.hpp"
 #include "fireswarm/radio/master_scheduler.hpp"
@@ -123,14 +124,14 @@ class Investigations {
   std::vector<std::uint8_t> EndForConfirmed(std::int32_t track_id, double now_s);
   /// Draws the verdicts due by `now`: tentative tracks not seen again by an
   /// investigator that got near are rejected in `fusion`; returns them in order.
-  std::vector<Rejection> Judge(radio::Nanos now, FireFusion& fusion);
+  std::vector<Rejection> Judge(common::Nanos now, FireFusion& fusion);
   /// The earliest verdict still awaited on a tentative track of `fusion`, or `next`.
-  radio::Nanos NextVerdict(const FireFusion& fusion, radio::Nanos next) const;
+  common::Nanos NextVerdict(const FireFusion& fusion, common::Nanos next) const;
 
   const std::vector<Investigation>& all() const { return investigations_; }
 
  private:
-  radio::Nanos VerdictDue(const Investigation& investigation) const;
+  common::Nanos VerdictDue(const Investigation& investigation) const;
 
   InvestigationsConfig config_;
   common::LocalFrame frame_;

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "fireswarm/common/local_frame.hpp"
+#include "fireswarm/common/time.hpp"
 #include "fireswarm/planner/plan.hpp"
 #include "fireswarm/radio/master_scheduler.hpp"
 #include "fireswarm/radio/messages.hpp"
@@ -90,9 +91,9 @@ class MissionManager {
 
   /// Asks refused starts again once start_retry_s has passed. Call at least as
   /// often as NextWakeup() says.
-  void Step(radio::Nanos now);
+  void Step(common::Nanos now);
   /// When Step() must next be called; Nanos::max() when nothing waits.
-  radio::Nanos NextWakeup() const;
+  common::Nanos NextWakeup() const;
 
   /// Puts a drone back in `phase` without sending anything (a restarted server
   /// whose journal says where the drone was): kFlying and later drones are not
@@ -129,7 +130,7 @@ class MissionManager {
     std::vector<radio::MissionChunk> chunks;
     std::vector<int> chunk_rounds;  // per chunk: sends so far
     DroneProgress progress;
-    radio::Nanos retry_start_at = radio::Nanos::max();
+    common::Nanos retry_start_at = common::Nanos::max();
   };
   static Drone DroneFor(DroneMission mission);
   // The drone of `vehicle`; throws std::out_of_range naming it when it has no mission.

@@ -29,6 +29,7 @@
 #include <vector>
 
 #include "fireswarm/common/local_frame.hpp"
+#include "fireswarm/common/time.hpp"
 #include "fireswarm/planner/geometry.hpp"
 #include "fireswarm/planner/transit.hpp"
 #include "fireswarm/radio/master_scheduler.hpp"
@@ -94,12 +95,12 @@ class Server {
   /// Carries out an operator's command at `now`. Returns false (and journals
   /// nothing) when it cannot be done now, with the reason in `why` if given:
   /// start without a mission or twice, an unknown vehicle, an invalid point.
-  bool Handle(const OperatorCommand& command, radio::Nanos now, std::string* why = nullptr);
+  bool Handle(const OperatorCommand& command, common::Nanos now, std::string* why = nullptr);
 
   /// Feeds the bytes received up to `now` and returns what to transmit.
-  std::vector<radio::Burst> Step(radio::Nanos now, std::span<const std::uint8_t> received);
+  std::vector<radio::Burst> Step(common::Nanos now, std::span<const std::uint8_t> received);
   /// When Step() must next be called without new bytes.
-  radio::Nanos NextWakeup() const;
+  common::Nanos NextWakeup() const;
 
   /// Journal entries produced since the last call, in order.
   std::vector<JournalEntry> TakeJournalEntries();
@@ -142,7 +143,7 @@ class Server {
   void HandOver(std::uint8_t lost, double now_s);
   void RecallHandedOverDrones(double now_s);
   std::vector<Taker> TakersFor(std::uint8_t lost, double now_s) const;
-  void CheckInvestigations(radio::Nanos now);
+  void CheckInvestigations(common::Nanos now);
   void UpdateState(double now_s);
   void Record(double t_s, JournalEvent event);
   void Replay(const JournalEntry& entry);

@@ -8,7 +8,7 @@
 #include <Eigen/Core>
 #include <array>
 
-namespace fireswarm::server {
+namespace fireswarm::common {
 
 /// `v` with its two axes exchanged: (east, north) as (north, east), or back.
 inline Eigen::Vector2d SwapAxes(const Eigen::Vector2d& v) {
@@ -30,4 +30,4 @@ inline std::array<double, 3> NorthEastTriangle(const Eigen::Matrix2d& covariance
   return {ne(0, 0), ne(0, 1), ne(1, 1)};
 }
 
-}  // namespace fireswarm::server
+}  // namespace fireswarm::common
