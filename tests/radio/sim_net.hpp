@@ -1,15 +1,14 @@
 // Test harness: the server and N vehicle endpoints on the real SharedChannel,
-// stepped event by event as the radio bench does, with hooks for deterministic loss.
+// stepped event by event by radio::ChannelLoop, with hooks for deterministic loss.
 #pragma once
 
-#include <algorithm>
 #include <functional>
 #include <memory>
 #include <span>
 #include <vector>
 
 #include "fireswarm/radio/channel.hpp"
-#include "fireswarm/radio/link.hpp"
+#include "fireswarm/radio/channel_loop.hpp"
 #include "fireswarm/radio/master_scheduler.hpp"
 #include "fireswarm/radio/vehicle_endpoint.hpp"
 
@@ -50,16 +49,14 @@ inline SchedulerConfig ServerConfig(LinkMode mode) {
 // Answers with `handler` when given (it must outlive the vehicle), else with its own
 // CountingHandler.
 struct SimVehicle {
-  SimVehicle(SharedChannel& channel, const VehicleEndpointConfig& config,
-             VehicleRequestHandler* external = nullptr)
-      : link(channel, channel.AddRadio()),
-        endpoint(config, external != nullptr ? *external : handler) {}
+  explicit SimVehicle(const VehicleEndpointConfig& config,
+                      VehicleRequestHandler* external = nullptr)
+      : endpoint(config, external != nullptr ? *external : handler) {}
   CountingHandler handler;
-  SimLink link;
   VehicleEndpoint endpoint;
 };
 
-// The server and N vehicles on the real SharedChannel, stepped event by event.
+// The server and N vehicles on one ChannelLoop, stepped event by event.
 // `drop_reply` and `drop_server_burst` see every burst and may keep it off the air:
 // deterministic loss without mocks. Vehicle i (from 1) answers with handlers[i - 1]
 // when given, else with its CountingHandler.
@@ -67,9 +64,12 @@ class SimNet {
  public:
   SimNet(const SchedulerConfig& config, int vehicles, double loss = 0.0,
          std::span<VehicleRequestHandler* const> handlers = {})
-      : channel_(ChannelFor(loss), /*seed=*/7),
-        server_link_(channel_, channel_.AddRadio()),
-        server_(config) {
+      : server_(config),
+        loop_(ChannelFor(loss), /*seed=*/7,
+              LoopMaster{[this] { return server_.NextWakeup(); },
+                         [this](Nanos now, std::span<const std::uint8_t> received) {
+                           return StepServer(now, received);
+                         }}) {
     for (int i = 1; i <= vehicles; ++i) {
       VehicleEndpointConfig v;
       v.id = static_cast<std::uint8_t>(i);
@@ -77,30 +77,24 @@ class SimNet {
       v.checksum = config.checksum;
       v.timing = config.timing;
       const auto index = static_cast<std::size_t>(i - 1);
-      vehicles_.push_back(std::make_unique<SimVehicle>(
-          channel_, v, index < handlers.size() ? handlers[index] : nullptr));
+      vehicles_.push_back(
+          std::make_unique<SimVehicle>(v, index < handlers.size() ? handlers[index] : nullptr));
+      loop_.AddVehicle(
+          [this, &vehicle = *vehicles_.back()](Nanos now, std::span<const std::uint8_t> received) {
+            return StepVehicle(vehicle, now, received);
+          });
     }
   }
 
   MasterScheduler& server() { return server_; }
   SimVehicle& vehicle(int id) { return *vehicles_.at(static_cast<std::size_t>(id - 1)); }
-  const SharedChannel& channel() const { return channel_; }
+  const SharedChannel& channel() const { return loop_.channel(); }
   std::vector<SchedulerEvent>& events() { return events_; }
 
   std::function<bool(std::uint8_t vehicle, const Burst& burst)> drop_reply;
   std::function<bool(const Burst& burst)> drop_server_burst;
 
-  void RunUntil(Nanos end) {
-    while (true) {
-      const Nanos t =
-          std::min(server_.NextWakeup(), channel_.NextEventTime().value_or(Nanos::max()));
-      if (t > end) break;
-      channel_.AdvanceTo(t);
-      StepServer(t);
-      StepVehicles(t);
-    }
-    channel_.AdvanceTo(end);
-  }
+  void RunUntil(Nanos end) { loop_.RunUntil(end); }
 
   template <typename Event>
   std::vector<Event> EventsOf() const {
@@ -120,32 +114,30 @@ class SimNet {
     return c;
   }
 
-  void StepServer(Nanos t) {
-    std::vector<std::uint8_t> bytes;
-    server_link_.Receive(t, bytes);
-    if (bytes.empty() && t < server_.NextWakeup()) return;
-    for (const Burst& burst : server_.Step(t, bytes)) {
-      if (drop_server_burst && drop_server_burst(burst)) continue;
-      server_link_.Transmit(t, burst.start, burst.bytes);
+  // The hooks keep a dropped burst off the air; the events are collected after
+  // every step so that their order is the scheduler's.
+  std::vector<Burst> StepServer(Nanos now, std::span<const std::uint8_t> received) {
+    std::vector<Burst> bursts = server_.Step(now, received);
+    if (drop_server_burst) {
+      std::erase_if(bursts, [this](const Burst& burst) { return drop_server_burst(burst); });
     }
     for (auto& e : server_.TakeEvents()) events_.push_back(std::move(e));
+    return bursts;
   }
 
-  void StepVehicles(Nanos t) {
-    for (auto& v : vehicles_) {
-      std::vector<std::uint8_t> bytes;
-      v->link.Receive(t, bytes);
-      if (bytes.empty()) continue;
-      for (const Burst& burst : v->endpoint.OnReceive(t, bytes)) {
-        if (drop_reply && drop_reply(v->endpoint.config().id, burst)) continue;
-        v->link.Transmit(t, burst.start, burst.bytes);
-      }
+  std::vector<Burst> StepVehicle(SimVehicle& vehicle, Nanos now,
+                                 std::span<const std::uint8_t> received) {
+    std::vector<Burst> bursts = vehicle.endpoint.OnReceive(now, received);
+    if (drop_reply) {
+      std::erase_if(bursts, [&](const Burst& burst) {
+        return drop_reply(vehicle.endpoint.config().id, burst);
+      });
     }
+    return bursts;
   }
 
-  SharedChannel channel_;
-  SimLink server_link_;
   MasterScheduler server_;
+  ChannelLoop loop_;  // after server_, which its master step uses
   std::vector<std::unique_ptr<SimVehicle>> vehicles_;
   std::vector<SchedulerEvent> events_;
 };

@@ -5,18 +5,16 @@
 // knows vehicles only through frames.
 #pragma once
 
-#include <gtest/gtest.h>
-
-#include <algorithm>
 #include <memory>
 #include <set>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "fireswarm/common/time.hpp"
 #include "fireswarm/radio/channel.hpp"
-#include "fireswarm/radio/link.hpp"
+#include "fireswarm/radio/channel_loop.hpp"
 #include "fireswarm/radio/master_scheduler.hpp"
 #include "fireswarm/radio/vehicle_endpoint.hpp"
 
@@ -82,77 +80,66 @@ class FakeVehicle final : public radio::VehicleRequestHandler {
   std::vector<radio::Command> commands_;
 };
 
-// Fake vehicles on one shared channel with a server end, run event by event (no
-// wall clock). The server end is anything with Step(now, bytes) -> bursts and
-// NextWakeup().
-struct Air {
+// Fake vehicles on one radio::ChannelLoop with a server end, run event by event
+// (no wall clock). The server end is anything with Step(now, bytes) -> bursts and
+// NextWakeup(), given to each Run(); the loop's own check fails a server end that
+// asks to be woken at the same instant again and again.
+class Air {
+ public:
   explicit Air(double loss, radio::LinkMode link_mode = radio::LinkMode::kSlots)
-      : mode(link_mode), channel(Channel(loss), 7), server_link(channel, channel.AddRadio()) {}
+      : mode(link_mode),
+        loop_(Channel(loss), /*seed=*/7,
+              radio::LoopMaster{[this] { return server_.next_wakeup(); },
+                                [this](Nanos now, std::span<const std::uint8_t> received) {
+                                  return server_.step(now, received);
+                                }}) {}
+  FakeVehicle& Add(std::uint8_t id, int refusals = 0) {
+    vehicles_.push_back(std::make_unique<FakeVehicle>(id, mode, refusals));
+    loop_.AddVehicle(
+        [this, &v = *vehicles_.back()](Nanos now, std::span<const std::uint8_t> received) {
+          if (silent.contains(v.id())) return std::vector<radio::Burst>{};
+          return v.endpoint().OnReceive(now, received);
+        });
+    return *vehicles_.back();
+  }
+  FakeVehicle& vehicle(std::uint8_t id) {
+    for (auto& v : vehicles_) {
+      if (v->id() == id) return *v;
+    }
+    throw std::out_of_range("no fake vehicle " + std::to_string(id));
+  }
+  const radio::SharedChannel& channel() const { return loop_.channel(); }
+
+  // Runs until `done()` holds or the next event would pass `limit`.
+  template <typename ServerEnd, typename Done>
+  Nanos Run(ServerEnd& server, Nanos limit, Done&& done) {
+    server_ = radio::MasterOf(server);
+    while (!done()) {
+      const Nanos t = loop_.NextEventTime();
+      if (t > limit) break;
+      loop_.StepAt(t);
+    }
+    return loop_.channel().now();
+  }
+  template <typename ServerEnd>
+  void RunUntil(ServerEnd& server, Nanos end) {
+    server_ = radio::MasterOf(server);
+    loop_.RunUntil(end);
+  }
+
+  radio::LinkMode mode;
+  std::set<std::uint8_t> silent;  ///< vehicles that neither hear nor answer (gone)
+
+ private:
   static radio::ChannelConfig Channel(double loss) {
     radio::ChannelConfig channel_config;
     channel_config.loss = loss;
     return channel_config;
   }
-  FakeVehicle& Add(std::uint8_t id, int refusals = 0) {
-    vehicles.push_back(std::make_unique<FakeVehicle>(id, mode, refusals));
-    links.push_back(std::make_unique<radio::SimLink>(channel, channel.AddRadio()));
-    return *vehicles.back();
-  }
-  FakeVehicle& vehicle(std::uint8_t id) {
-    for (auto& v : vehicles) {
-      if (v->id() == id) return *v;
-    }
-    throw std::out_of_range("no fake vehicle " + std::to_string(id));
-  }
-  // Runs until `done()` holds or the next event would pass `limit`.
-  template <typename ServerEnd, typename Done>
-  Nanos Run(ServerEnd& server, Nanos limit, Done&& done) {
-    // A server end that keeps asking to be woken at the same instant would spin
-    // this loop forever: that fails the test instead.
-    constexpr int kMaxWakeupsAtOneInstant = 10'000;
-    Nanos last{-1};
-    int same_instant = 0;
-    while (!done()) {
-      const Nanos t =
-          std::max(channel.now(),
-                   std::min(server.NextWakeup(), channel.NextEventTime().value_or(Nanos::max())));
-      if (t > limit) break;
-      same_instant = t == last ? same_instant + 1 : 0;
-      last = t;
-      if (same_instant > kMaxWakeupsAtOneInstant) {
-        ADD_FAILURE() << "the server end asks to be woken at " << t.count()
-                      << " ns again and again without progress";
-        break;
-      }
-      channel.AdvanceTo(t);
-      std::vector<std::uint8_t> bytes;
-      server_link.Receive(t, bytes);
-      for (const radio::Burst& burst : server.Step(t, bytes)) {
-        server_link.Transmit(t, burst.start, burst.bytes);
-      }
-      for (std::size_t i = 0; i < vehicles.size(); ++i) {
-        bytes.clear();
-        links[i]->Receive(t, bytes);
-        if (bytes.empty() || silent.contains(vehicles[i]->id())) continue;
-        for (const radio::Burst& burst : vehicles[i]->endpoint().OnReceive(t, bytes)) {
-          links[i]->Transmit(t, burst.start, burst.bytes);
-        }
-      }
-    }
-    return channel.now();
-  }
-  template <typename ServerEnd>
-  void RunUntil(ServerEnd& server, Nanos end) {
-    Run(server, end, [] { return false; });
-    if (channel.now() < end) channel.AdvanceTo(end);
-  }
 
-  radio::LinkMode mode;
-  radio::SharedChannel channel;
-  radio::SimLink server_link;
-  std::vector<std::unique_ptr<FakeVehicle>> vehicles;
-  std::vector<std::unique_ptr<radio::SimLink>> links;
-  std::set<std::uint8_t> silent;  ///< vehicles that neither hear nor answer (gone)
+  radio::LoopMaster server_;  // the server end of the current Run()
+  radio::ChannelLoop loop_;   // after server_, which its master steps through
+  std::vector<std::unique_ptr<FakeVehicle>> vehicles_;
 };
 
 }  // namespace fireswarm::server::testing

@@ -100,7 +100,7 @@ struct Fleet {
     EXPECT_TRUE(server.Handle({OperatorCommand::Kind::kStart, 0, {}, 0.0, "test"}, Nanos{0}));
     air.Run(server, 60 * kSecond, [&] { return server.state() == MissionState::kRunning; });
   }
-  void RunFor(Nanos duration) { air.RunUntil(server, air.channel.now() + duration); }
+  void RunFor(Nanos duration) { air.RunUntil(server, air.channel().now() + duration); }
   Air air;
   Server server;
 };
@@ -113,7 +113,7 @@ TEST(Server, UploadsStartsAndRunsTheMission) {
     EXPECT_EQ(fleet.air.vehicle(id).starts_accepted(), 1);
   }
   fleet.RunFor(5 * kSecond);
-  EXPECT_EQ(fleet.server.registry().LinkAt(2, common::ToSeconds(fleet.air.channel.now())),
+  EXPECT_EQ(fleet.server.registry().LinkAt(2, common::ToSeconds(fleet.air.channel().now())),
             LinkState::kOk);
 }
 
@@ -187,7 +187,7 @@ TEST(Server, SendsNoInvestigatorWhoseWayBackToItsLaneCrossesANoFlyZone) {
   const auto retask = [&](double north_m, std::string* why) {
     const OperatorCommand command{OperatorCommand::Kind::kRetaskVehicle, 1,
                                   kFrame.ToGeodetic({0.0, north_m}), 0.0, ""};
-    return fleet.server.Handle(command, fleet.air.channel.now(), why);
+    return fleet.server.Handle(command, fleet.air.channel().now(), why);
   };
   std::string why;
   EXPECT_FALSE(retask(200.0, &why));
@@ -218,7 +218,7 @@ TEST(Server, RefusesAnOperatorInvestigationIntoANoFlyZoneWithTheReason) {
   const auto order = [&](OperatorCommand::Kind kind, std::uint8_t vehicle, double east_m,
                          double north_m, std::string* why) {
     const OperatorCommand command{kind, vehicle, kFrame.ToGeodetic({east_m, north_m}), 0.0, ""};
-    return fleet.server.Handle(command, fleet.air.channel.now(), why);
+    return fleet.server.Handle(command, fleet.air.channel().now(), why);
   };
   using Kind = OperatorCommand::Kind;
   std::string why;
@@ -283,15 +283,15 @@ TEST(Server, AnInvestigationSeenAgainIsJudgedOnceAndNotWaitedForAgain) {
   ASSERT_TRUE(server.Handle({OperatorCommand::Kind::kStart, 0, {}, 0.0, ""}, Nanos{0}));
   air.Run(server, 60 * kSecond, [&] { return server.state() == MissionState::kRunning; });
   air.vehicle(1).endpoint().QueueFireReport(ReportAt(50, 0, 0, 2'000));
-  air.RunUntil(server, air.channel.now() + 5 * kSecond);
+  air.RunUntil(server, air.channel().now() + 5 * kSecond);
   ASSERT_EQ(server.investigations().size(), 1u);
   EXPECT_EQ(server.investigations()[0].vehicle, 1);
   air.vehicle(1).endpoint().QueueFireReport(ReportAt(51, 0, 0, 9'000));
-  air.RunUntil(server, air.channel.now() + 90 * kSecond);
+  air.RunUntil(server, air.channel().now() + 90 * kSecond);
   ASSERT_EQ(server.fusion().tracks().size(), 1u);
   EXPECT_EQ(server.fusion().tracks()[0].status, FireTrackStatus::kTentative);
   EXPECT_TRUE(server.investigations()[0].judged);
-  EXPECT_GT(server.NextWakeup(), air.channel.now());
+  EXPECT_GT(server.NextWakeup(), air.channel().now());
 }
 
 TEST(Server, RestoredFromItsJournalKeepsTracksAndPhasesAndUploadsNothingAgain) {
@@ -364,7 +364,7 @@ TEST(Server, ADroneGivenUpAsLostIsSentHomeWhenHeardAgain) {
   Server server(ServerConfig{}, kFrame);
   StartLaneMission(air, server);
   air.silent.insert(2);
-  air.Run(server, air.channel.now() + 30 * kSecond,
+  air.Run(server, air.channel().now() + 30 * kSecond,
           [&] { return server.mission()->progress(2).phase == DronePhase::kFailed; });
   ASSERT_EQ(server.mission()->progress(2).phase, DronePhase::kFailed);
   ASSERT_EQ(LastOf(air.vehicle(2), radio::CommandType::kReturnToLaunch), nullptr);
@@ -372,11 +372,11 @@ TEST(Server, ADroneGivenUpAsLostIsSentHomeWhenHeardAgain) {
   // Only out of reach: it is heard again, still searching its old lanes, which
   // 1 and 3 now fly. It is ordered home, once.
   air.silent.erase(2);
-  air.Run(server, air.channel.now() + 30 * kSecond,
+  air.Run(server, air.channel().now() + 30 * kSecond,
           [&] { return LastOf(air.vehicle(2), radio::CommandType::kReturnToLaunch) != nullptr; });
   EXPECT_NE(LastOf(air.vehicle(2), radio::CommandType::kReturnToLaunch), nullptr);
   EXPECT_EQ(LastOf(air.vehicle(1), radio::CommandType::kReturnToLaunch), nullptr);
-  air.Run(server, air.channel.now() + 10 * kSecond, [] { return false; });
+  air.Run(server, air.channel().now() + 10 * kSecond, [] { return false; });
   std::vector<JournalEntry> journal = server.TakeJournalEntries();
   EXPECT_EQ(std::ranges::count_if(journal,
                                   [](const JournalEntry& e) {
@@ -397,7 +397,7 @@ TEST(Server, ALostDronesLanesGoToTheOthersAsNewMissions) {
 
   // Vehicle 2 is gone: after the registry's lost time its two lanes are flown by 1 and 3.
   air.silent.insert(2);
-  const Nanos gone_at = air.channel.now();
+  const Nanos gone_at = air.channel().now();
   air.Run(server, gone_at + 30 * kSecond, [&] {
     return server.mission()->progress(2).phase == DronePhase::kFailed &&
            server.mission()->progress(1).phase == DronePhase::kFlying &&
@@ -406,7 +406,7 @@ TEST(Server, ALostDronesLanesGoToTheOthersAsNewMissions) {
            server.mission()->mission_of(3).mission_id != 1;
   });
   const double lost_after_s = ServerConfig{}.link.lost_after_s;
-  EXPECT_GE(common::ToSeconds(air.channel.now() - gone_at), lost_after_s);
+  EXPECT_GE(common::ToSeconds(air.channel().now() - gone_at), lost_after_s);
   ASSERT_EQ(server.mission()->progress(2).phase, DronePhase::kFailed);
   EXPECT_NE(server.mission()->progress(2).failure.find("lost"), std::string::npos);
   // Each of the others stores and started its new mission: its own lanes, then one of 2's.
@@ -460,7 +460,7 @@ TEST(Server, AHandedOverLaneIsJoinedAroundANoFlyZone) {
   StartLaneMission(air, server);
   ASSERT_EQ(server.state(), MissionState::kRunning);
   air.silent.insert(2);
-  air.Run(server, air.channel.now() + 30 * kSecond, [&] {
+  air.Run(server, air.channel().now() + 30 * kSecond, [&] {
     return server.mission()->mission_of(1).mission_id != 1 &&
            server.mission()->mission_of(3).mission_id != 1;
   });
