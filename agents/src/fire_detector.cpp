@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <string_view>
 
+#include "fireswarm/common/north_east.hpp"
+
 namespace fireswarm::agents {
 namespace {
 
@@ -84,7 +86,7 @@ std::vector<FireDetection> FireDetector::Process(double time_s, const CameraFram
     const bool clipped = region->min_col == 0 || region->min_row == 0 ||
                          region->max_col == frame.width_px - 1 ||
                          region->max_row == frame.height_px - 1;
-    const Fix fix{Eigen::Vector2d(local.north_m, local.east_m), *ground, region, clipped};
+    const Fix fix{Eigen::Vector2d(local.east_m, local.north_m), *ground, region, clipped};
     const std::size_t index = Associate(fix);
     Candidate& candidate = candidates_[index];
     if (std::find(hit_this_frame_.begin(), hit_this_frame_.end(), index) != hit_this_frame_.end()) {
@@ -114,7 +116,7 @@ std::vector<FireDetection> FireDetector::Process(double time_s, const CameraFram
 
 Eigen::Matrix2d FireDetector::CovarianceOf(const Candidate& candidate) const {
   const int averaged = std::min(candidate.fixes, kMaxAveragedFixes);
-  return candidate.navigation_covariance + candidate.pixel_covariance / averaged;
+  return candidate.navigation_covariance_en_m2 + candidate.pixel_covariance_en_m2 / averaged;
 }
 
 std::size_t FireDetector::Associate(const Fix& fix) {
@@ -122,12 +124,15 @@ std::size_t FireDetector::Associate(const Fix& fix) {
   double best_distance_m = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < candidates_.size(); ++i) {
     const Candidate& candidate = candidates_[i];
-    const double distance_m = (candidate.north_east_m - fix.north_east_m).norm();
-    const Eigen::Matrix2d summed = CovarianceOf(candidate) + fix.ground.covariance_ne_m2;
-    const double largest_m2 =
-        Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(summed, Eigen::EigenvaluesOnly)
-            .eigenvalues()
-            .maxCoeff();
+    const double distance_m = (candidate.east_north_m - fix.east_north_m).norm();
+    const Eigen::Matrix2d summed_en_m2 = CovarianceOf(candidate) + fix.ground.covariance_en_m2;
+    // Solved in (north, east) order, as before the tree went east-first: Eigen's
+    // eigenvalues of the axis-swapped matrix may differ in the last bit, and
+    // with them the gate.
+    const double largest_m2 = Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(
+                                  common::SwapAxes(summed_en_m2), Eigen::EigenvaluesOnly)
+                                  .eigenvalues()
+                                  .maxCoeff();
     const double gate_m =
         std::max(config_.gate_min_m, config_.gate_sigmas * std::sqrt(std::max(largest_m2, 0.0)));
     if (distance_m <= gate_m && distance_m < best_distance_m) {
@@ -164,12 +169,13 @@ void FireDetector::Fold(Candidate& candidate, const Fix& fix) {
   // Running means (weight 1/n, at least 1/kMaxAveragedFixes).
   candidate.fixes += 1;
   const double weight = 1.0 / std::min(candidate.fixes, kMaxAveragedFixes);
-  const Eigen::Matrix2d navigation =
-      fix.ground.covariance_ne_m2 - fix.ground.pixel_covariance_ne_m2;
-  candidate.north_east_m += weight * (fix.north_east_m - candidate.north_east_m);
-  candidate.navigation_covariance += weight * (navigation - candidate.navigation_covariance);
-  candidate.pixel_covariance +=
-      weight * (fix.ground.pixel_covariance_ne_m2 - candidate.pixel_covariance);
+  const Eigen::Matrix2d navigation_en_m2 =
+      fix.ground.covariance_en_m2 - fix.ground.pixel_covariance_en_m2;
+  candidate.east_north_m += weight * (fix.east_north_m - candidate.east_north_m);
+  candidate.navigation_covariance_en_m2 +=
+      weight * (navigation_en_m2 - candidate.navigation_covariance_en_m2);
+  candidate.pixel_covariance_en_m2 +=
+      weight * (fix.ground.pixel_covariance_en_m2 - candidate.pixel_covariance_en_m2);
 }
 
 bool FireDetector::DueForReport(const Candidate& candidate, double time_s) const {
@@ -194,15 +200,14 @@ FireDetection FireDetector::Report(const Candidate& candidate, double time_s,
                                    const ObserverPose& pose) const {
   FireDetection detection;
   detection.time_s = time_s;
-  common::EastNorth local;
-  local.north_m = candidate.north_east_m.x();
-  local.east_m = candidate.north_east_m.y();
-  detection.position = anchor_->ToGeodetic(local);
-  const Eigen::Matrix2d covariance = CovarianceOf(candidate);
-  detection.sigma_north_m = std::sqrt(covariance(0, 0));
-  detection.sigma_east_m = std::sqrt(covariance(1, 1));
+  detection.position = anchor_->ToGeodetic(
+      common::EastNorth{candidate.east_north_m.x(), candidate.east_north_m.y()});
+  const auto [north_north_m2, north_east_m2, east_east_m2] =
+      common::NorthEastTriangle(CovarianceOf(candidate));
+  detection.sigma_north_m = std::sqrt(north_north_m2);
+  detection.sigma_east_m = std::sqrt(east_east_m2);
   const double product = detection.sigma_north_m * detection.sigma_east_m;
-  detection.correlation_ne = product > 0.0 ? covariance(0, 1) / product : 0.0;
+  detection.correlation_ne = product > 0.0 ? north_east_m2 / product : 0.0;
   detection.observer = pose.position;
   detection.observer_altitude_m = pose.altitude_m;
   detection.pixel_count = candidate.pixel_count;

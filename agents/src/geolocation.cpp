@@ -33,8 +33,9 @@ using InputVector = Eigen::Matrix<double, kInputCount, 1>;
 // Central-difference steps: small against the sigmas, large against rounding.
 constexpr std::array<double, kInputCount> kSteps = {1e-4, 1e-7, 1e-7, 1e-7, 1e-5, 1e-5};
 
-// (north, east) of the intersection for the inputs x, or nullopt above the horizon.
-std::optional<Eigen::Vector2d> NorthEast(const ObserverPose& pose, const InputVector& x) {
+// (east, north) of the intersection for the inputs x, or nullopt above the horizon.
+std::optional<Eigen::Vector2d> GroundOffsetEastNorth(const ObserverPose& pose,
+                                                     const InputVector& x) {
   const CameraGeometry& camera = pose.camera;
   if (!(x[kAltitude] > 0.0)) return std::nullopt;
   const double fx_px = 0.5 * camera.width_px / std::tan(0.5 * camera.hfov_deg * common::kRadPerDeg);
@@ -49,7 +50,8 @@ std::optional<Eigen::Vector2d> NorthEast(const ObserverPose& pose, const InputVe
   const Eigen::Vector3d ray = NedFromBody(x[kRoll], x[kPitch], x[kHeading]) * ray_body;
   if (ray.z() < kMinDownRay) return std::nullopt;
   const double t = x[kAltitude] / ray.z();
-  return Eigen::Vector2d(t * ray.x(), t * ray.y());
+  // The ray is NED: x north, y east.
+  return Eigen::Vector2d(t * ray.y(), t * ray.x());
 }
 
 InputVector InputsOf(const ObserverPose& pose, ImagePoint pixel) {
@@ -72,29 +74,28 @@ CameraGeometry GeometryOf(const common::CameraModel& model, double camera_pitch_
 }
 
 std::optional<common::EastNorth> IntersectGround(const ObserverPose& pose, ImagePoint pixel) {
-  const std::optional<Eigen::Vector2d> ne = NorthEast(pose, InputsOf(pose, pixel));
-  if (!ne) return std::nullopt;
-  common::EastNorth offset;
-  offset.east_m = ne->y();
-  offset.north_m = ne->x();
-  return offset;
+  const std::optional<Eigen::Vector2d> east_north_m =
+      GroundOffsetEastNorth(pose, InputsOf(pose, pixel));
+  if (!east_north_m) return std::nullopt;
+  return common::EastNorth{east_north_m->x(), east_north_m->y()};
 }
 
 std::optional<GroundFix> GeolocatePixel(const ObserverPose& pose, ImagePoint pixel,
                                         const GeolocationSigmas& sigmas) {
   const InputVector x = InputsOf(pose, pixel);
-  const std::optional<Eigen::Vector2d> ne = NorthEast(pose, x);
-  if (!ne) return std::nullopt;
+  const std::optional<Eigen::Vector2d> east_north_m = GroundOffsetEastNorth(pose, x);
+  if (!east_north_m) return std::nullopt;
 
-  // First-order propagation: J diag(sigma^2) J^T, J by central differences.
+  // First-order propagation: J diag(sigma^2) J^T, J by central differences,
+  // rows (east, north).
   Eigen::Matrix<double, 2, kInputCount> jacobian;
   for (int i = 0; i < kInputCount; ++i) {
     InputVector plus = x, minus = x;
     const double step = kSteps[static_cast<std::size_t>(i)];
     plus[i] += step;
     minus[i] -= step;
-    const std::optional<Eigen::Vector2d> a = NorthEast(pose, plus);
-    const std::optional<Eigen::Vector2d> b = NorthEast(pose, minus);
+    const std::optional<Eigen::Vector2d> a = GroundOffsetEastNorth(pose, plus);
+    const std::optional<Eigen::Vector2d> b = GroundOffsetEastNorth(pose, minus);
     if (!a || !b) return std::nullopt;
     jacobian.col(i) = (*a - *b) / (2.0 * step);
   }
@@ -104,18 +105,17 @@ std::optional<GroundFix> GeolocatePixel(const ObserverPose& pose, ImagePoint pix
       sigmas.pixel_px * sigmas.pixel_px, sigmas.pixel_px * sigmas.pixel_px;
 
   GroundFix fix;
-  fix.offset_m.east_m = ne->y();
-  fix.offset_m.north_m = ne->x();
+  fix.offset_m = common::EastNorth{east_north_m->x(), east_north_m->y()};
   // One fix per call: a LocalFrame at the vehicle is the one way to geodesy.
   fix.position = common::LocalFrame(pose.position).ToGeodetic(fix.offset_m);
   const auto pixel_part = jacobian.rightCols<2>();
   const Eigen::Matrix2d pixel_covariance =
       pixel_part * variances.tail<2>().asDiagonal() * pixel_part.transpose();
-  fix.pixel_covariance_ne_m2 = 0.5 * (pixel_covariance + pixel_covariance.transpose());
+  fix.pixel_covariance_en_m2 = 0.5 * (pixel_covariance + pixel_covariance.transpose());
   // The GPS horizontal error moves the fix with the vehicle, one to one.
   const Eigen::Matrix2d propagated = jacobian * variances.asDiagonal() * jacobian.transpose();
   // Symmetric to the last bit, so consumers may rely on (0, 1) == (1, 0).
-  fix.covariance_ne_m2 = 0.5 * (propagated + propagated.transpose()) +
+  fix.covariance_en_m2 = 0.5 * (propagated + propagated.transpose()) +
                          sigmas.horizontal_m * sigmas.horizontal_m * Eigen::Matrix2d::Identity();
   return fix;
 }

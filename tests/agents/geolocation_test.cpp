@@ -14,6 +14,7 @@
 #include <string>
 
 #include "agents/thermal_scene.hpp"
+#include "fireswarm/common/north_east.hpp"
 
 namespace fireswarm::agents {
 namespace {
@@ -143,7 +144,8 @@ TEST(GeolocatePixel, CovarianceMatchesMonteCarloWithinTenPercent) {
         PoseAt({45.0, 7.0}, 100.0, c.heading_deg, c.pitch_deg, c.roll_deg, camera);
     const std::optional<GroundFix> fix = GeolocatePixel(pose, ImagePoint{c.u_px, c.v_px}, sigmas);
     ASSERT_TRUE(fix.has_value());
-    const Eigen::Matrix2d predicted = fix->covariance_ne_m2;
+    // MonteCarloCovariance samples (north, east).
+    const Eigen::Matrix2d predicted = common::SwapAxes(fix->covariance_en_m2);
     const Eigen::Matrix2d sampled =
         MonteCarloCovariance(pose, ImagePoint{c.u_px, c.v_px}, sigmas, 20000);
     EXPECT_NEAR(predicted(0, 0), sampled(0, 0), 0.1 * sampled(0, 0));
@@ -153,8 +155,8 @@ TEST(GeolocatePixel, CovarianceMatchesMonteCarloWithinTenPercent) {
     EXPECT_NEAR(predicted(0, 1), sampled(0, 1), 0.1 * scale_m2);
     EXPECT_DOUBLE_EQ(predicted(0, 1), predicted(1, 0));
     // The pixel part is a part: positive and smaller than the whole.
-    EXPECT_GT(fix->pixel_covariance_ne_m2.trace(), 0.0);
-    EXPECT_LT(fix->pixel_covariance_ne_m2.trace(), predicted.trace());
+    EXPECT_GT(fix->pixel_covariance_en_m2.trace(), 0.0);
+    EXPECT_LT(fix->pixel_covariance_en_m2.trace(), predicted.trace());
     // GPS alone is 2.12 m per axis; the attitude adds to it.
     EXPECT_GT(predicted(0, 0), sigmas.horizontal_m * sigmas.horizontal_m);
   }

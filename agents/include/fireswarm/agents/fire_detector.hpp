@@ -101,10 +101,10 @@ class FireDetector {
 
  private:
   struct Candidate {
-    Eigen::Vector2d north_east_m = Eigen::Vector2d::Zero();  // in anchor_
-    Eigen::Matrix2d navigation_covariance = Eigen::Matrix2d::Zero();
-    Eigen::Matrix2d pixel_covariance = Eigen::Matrix2d::Zero();
-    int fixes = 0;                // averaged into north_east_m
+    Eigen::Vector2d east_north_m = Eigen::Vector2d::Zero();  // in anchor_
+    Eigen::Matrix2d navigation_covariance_en_m2 = Eigen::Matrix2d::Zero();
+    Eigen::Matrix2d pixel_covariance_en_m2 = Eigen::Matrix2d::Zero();
+    int fixes = 0;                // averaged into east_north_m
     bool has_whole_fix = false;   // a fix from a region not cut by the image edge
     int streak = 0;               // consecutive frames seen, ending at last_frame
     double streak_start_s = 0.0;  // time of the streak's first frame
@@ -117,12 +117,13 @@ class FireDetector {
     int pixel_count = 0;              // in the last frame
   };
   struct Fix {
-    Eigen::Vector2d north_east_m;
+    Eigen::Vector2d east_north_m;  // in anchor_
     GroundFix ground;
     const HotRegion* region;
     bool clipped;  // the region touches the image edge
   };
 
+  /// (east, north), m^2.
   Eigen::Matrix2d CovarianceOf(const Candidate& candidate) const;
   std::size_t Associate(const Fix& fix);
   void Fold(Candidate& candidate, const Fix& fix);

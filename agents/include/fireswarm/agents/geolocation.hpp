@@ -1,7 +1,7 @@
 // Where a pixel of the thermal camera lies on the ground: the seed's flat-terrain
 // formula (seed section 7.3, eq. 5-15) kept as it is printed, and the general
 // pinhole ray-ground intersection with the full attitude and the camera mount,
-// each fix carrying a north/east covariance.
+// each fix carrying an (east, north) covariance.
 //
 // Conventions of the general intersection, the same as the simulator's camera
 // (sim2d/thermal_camera.hpp) so that one is the exact inverse of the other:
@@ -74,12 +74,12 @@ struct GeolocationSigmas {
 struct GroundFix {
   common::EastNorth offset_m;  ///< from the vehicle's (GPS) position, metres
   common::LatLon position;     ///< offset_m applied at the vehicle through common::LocalFrame
-  /// Covariance of (north, east), m^2, from every GeolocationSigmas term.
-  Eigen::Matrix2d covariance_ne_m2 = Eigen::Matrix2d::Zero();
-  /// The part of covariance_ne_m2 due to the pixel (centroid) error alone: the
+  /// Covariance of (east, north), m^2, from every GeolocationSigmas term.
+  Eigen::Matrix2d covariance_en_m2 = Eigen::Matrix2d::Zero();
+  /// The part of covariance_en_m2 due to the pixel (centroid) error alone: the
   /// only term independent from frame to frame. GPS position, altitude and
   /// attitude errors drift slowly and repeat over the frames of one pass.
-  Eigen::Matrix2d pixel_covariance_ne_m2 = Eigen::Matrix2d::Zero();
+  Eigen::Matrix2d pixel_covariance_en_m2 = Eigen::Matrix2d::Zero();
 };
 
 /// Offset (east, north) in metres from the vehicle to where the ray through
