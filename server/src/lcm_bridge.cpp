@@ -18,19 +18,20 @@ namespace {
 // CSV rows, one function per message type: the header line and the rows of one
 // message (a track list gives one row per track).
 std::string CsvHeader(const vehicle_state_t&) {
-  return "utime,receiver_id,vehicle_time_ms,lat_deg,lon_deg,altitude_m,velocity_north_mps,"
+  return "utime,receiver_id,has_position,vehicle_time_ms,lat_deg,lon_deg,altitude_m,velocity_"
+         "north_mps,"
          "velocity_east_mps,velocity_up_mps,roll_deg,pitch_deg,heading_deg,battery_v,"
          "battery_percent,flight_mode,flags,pending_reports,mission_id,waypoint_index,"
          "link_state,telemetry_age_s,missed_replies";
 }
 void CsvRows(std::ostream& out, const vehicle_state_t& m) {
-  out << m.utime << ',' << m.receiver_id << ',' << m.vehicle_time_ms << ',' << m.lat_deg << ','
-      << m.lon_deg << ',' << m.altitude_m << ',' << m.velocity_north_mps << ','
-      << m.velocity_east_mps << ',' << m.velocity_up_mps << ',' << m.roll_deg << ',' << m.pitch_deg
-      << ',' << m.heading_deg << ',' << m.battery_v << ',' << m.battery_percent << ','
-      << int{m.flight_mode} << ',' << m.flags << ',' << m.pending_reports << ',' << m.mission_id
-      << ',' << m.waypoint_index << ',' << int{m.link_state} << ',' << m.telemetry_age_s << ','
-      << m.missed_replies << '\n';
+  out << m.utime << ',' << m.receiver_id << ',' << int{m.has_position} << ',' << m.vehicle_time_ms
+      << ',' << m.lat_deg << ',' << m.lon_deg << ',' << m.altitude_m << ',' << m.velocity_north_mps
+      << ',' << m.velocity_east_mps << ',' << m.velocity_up_mps << ',' << m.roll_deg << ','
+      << m.pitch_deg << ',' << m.heading_deg << ',' << m.battery_v << ',' << m.battery_percent
+      << ',' << int{m.flight_mode} << ',' << m.flags << ',' << m.pending_reports << ','
+      << m.mission_id << ',' << m.waypoint_index << ',' << int{m.link_state} << ','
+      << m.telemetry_age_s << ',' << m.missed_replies << '\n';
 }
 
 std::string CsvHeader(const fire_track_list_t&) {

@@ -1,6 +1,7 @@
 // Server state -> LCM messages, and operator_command_t -> OperatorCommand. Pure.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -42,7 +43,12 @@ vehicle_state_t ToVehicleState(const Server& server, std::uint8_t vehicle, doubl
   m.missed_replies =
       static_cast<std::int32_t>(std::min<std::uint32_t>(state.missed_replies, INT32_MAX));
   m.telemetry_age_s = server.registry().TelemetryAgeS(vehicle, now_s).value_or(-1.0);
-  if (!state.telemetry) return m;
+  constexpr double kUnknown = std::numeric_limits<double>::quiet_NaN();
+  if (!state.telemetry) {
+    // Registered but not heard yet: no position rather than one at (0, 0).
+    m.lat_deg = m.lon_deg = m.altitude_m = kUnknown;
+    return m;
+  }
   const radio::Telemetry& t = *state.telemetry;
   m.vehicle_time_ms = t.time_ms;
   m.lat_deg = t.lat_deg;
@@ -61,6 +67,9 @@ vehicle_state_t ToVehicleState(const Server& server, std::uint8_t vehicle, doubl
   m.pending_reports = t.pending_reports;
   m.mission_id = t.mission_id;
   m.waypoint_index = t.waypoint_index;
+  // Without a GPS fix the vehicle sends (0, 0): it knows no position.
+  m.has_position = (t.flags & radio::telemetry_flags::kGpsFix) != 0;
+  if (!m.has_position) m.lat_deg = m.lon_deg = kUnknown;
   return m;
 }
 

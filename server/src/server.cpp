@@ -323,11 +323,26 @@ void Server::UpdateState(double now_s) {
   const bool all_over = std::ranges::all_of(ids, [&](std::uint8_t id) {
     return phase(id) == DronePhase::kDone || phase(id) == DronePhase::kFailed;
   });
+  // The search is over when no drone searches any more: each is down (done,
+  // failed) or, by its latest telemetry, on its way home or landing (a drone
+  // uploading or starting a handed-over mission still searches).
+  const auto heading_home = [&](std::uint8_t id) {
+    const std::optional<radio::Telemetry>& telemetry = registry_.state(id).telemetry;
+    if (!telemetry) return false;
+    const radio::FlightMode mode = telemetry->mode;
+    return mode == radio::FlightMode::kReturnToLaunch || mode == radio::FlightMode::kLand ||
+           mode == radio::FlightMode::kLanded;
+  };
+  const bool search_over = std::ranges::all_of(ids, [&](std::uint8_t id) {
+    return phase(id) == DronePhase::kDone || phase(id) == DronePhase::kFailed || heading_home(id);
+  });
   MissionState next = state_;
   if (all_over) {
     next = MissionState::kComplete;
   } else if (state_ == MissionState::kUploading && mission_->AllStarted()) {
     next = MissionState::kRunning;
+  } else if (state_ == MissionState::kRunning && search_over) {
+    next = MissionState::kReturning;
   }
   if (next != state_) {
     state_ = next;

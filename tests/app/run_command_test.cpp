@@ -177,6 +177,8 @@ TEST_F(RunCommandTest, LogsTheServerOnLcmInSimulatedTime) {
   std::map<int, int> states_per_vehicle;
   std::int64_t previous_utime = -1;
   std::int64_t previous_status_utime = -1;
+  bool saw_returning = false;
+  bool fixed_before_end = false;
   for (const LoggedEvent& event : events) {
     ++per_channel[event.channel];
     // One time line: the event times never go back.
@@ -187,6 +189,10 @@ TEST_F(RunCommandTest, LogsTheServerOnLcmInSimulatedTime) {
       EXPECT_EQ(state.utime, event.timestamp);
       EXPECT_TRUE(state.receiver_id == 1 || state.receiver_id == 2) << state.receiver_id;
       ++states_per_vehicle[state.receiver_id];
+      // A position only with a GPS fix (NaN before, never a made-up one at 0, 0).
+      EXPECT_EQ(std::isnan(state.lat_deg), !state.has_position) << state.receiver_id;
+      EXPECT_EQ(std::isnan(state.lon_deg), !state.has_position) << state.receiver_id;
+      fixed_before_end |= state.has_position;
     } else if (event.channel == "FIRESWARM_MISSION_STATUS") {
       const auto status = Decode<fireswarm::mission_status_t>(event);
       EXPECT_EQ(status.utime, event.timestamp);
@@ -194,6 +200,11 @@ TEST_F(RunCommandTest, LogsTheServerOnLcmInSimulatedTime) {
       previous_status_utime = status.utime;
       // utime is simulated time: the mission started at t = 0.
       EXPECT_NEAR(status.elapsed_s, static_cast<double>(status.utime) * 1e-6, 1e-6);
+      // Once the drones fly home the mission says so, and never "running" again.
+      if (status.state == fireswarm::mission_status_t::STATE_RETURNING) saw_returning = true;
+      if (saw_returning) {
+        EXPECT_NE(status.state, fireswarm::mission_status_t::STATE_RUNNING);
+      }
     } else if (event.channel == "FIRESWARM_FIRE_TRACKS") {
       EXPECT_EQ(Decode<fireswarm::fire_track_list_t>(event).utime, event.timestamp);
     } else if (event.channel == "FIRESWARM_RADIO_STATS") {
@@ -211,6 +222,7 @@ TEST_F(RunCommandTest, LogsTheServerOnLcmInSimulatedTime) {
     EXPECT_NEAR(count, 2.0 * sim_s, 2.0) << "vehicle " << vehicle;
   }
   EXPECT_NEAR(per_channel["FIRESWARM_MISSION_STATUS"], sim_s, 1.0);
+  EXPECT_TRUE(fixed_before_end) << "positions reached the server";
   EXPECT_NEAR(per_channel["FIRESWARM_FIRE_TRACKS"], sim_s, 1.0);
   EXPECT_NEAR(per_channel["FIRESWARM_RADIO_STATS"], 0.5 * sim_s, 1.0);
 }

@@ -40,6 +40,7 @@ vehicle_state_t Sample<vehicle_state_t>() {
   vehicle_state_t m{};
   m.utime = kUtime;
   m.receiver_id = 254;
+  m.has_position = true;
   m.vehicle_time_ms = 3'600'123;
   m.lat_deg = 47.3977419;
   m.lon_deg = -8.5455938;
@@ -293,6 +294,7 @@ TEST(LcmTypeFields, StringsBytesAndFlagsSurvive) {
 
   const vehicle_state_t state = RoundTrip(Sample<vehicle_state_t>());
   EXPECT_EQ(state.receiver_id, 254);
+  EXPECT_TRUE(state.has_position);
   EXPECT_EQ(state.mission_id, 65'535);
   EXPECT_EQ(state.flags & vehicle_state_t::FLAG_GPS_FIX, vehicle_state_t::FLAG_GPS_FIX);
   EXPECT_DOUBLE_EQ(state.lon_deg, -8.5455938);

@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -51,6 +52,8 @@ struct HeardFleet {
       t.mode = radio::FlightMode::kSearch;
       t.battery_percent = 77;
       t.time_ms = 5'000;
+      // Vehicle 2 has its GPS fix; vehicle 1 not yet (it sends 0, 0 then).
+      if (id == 2) t.flags = radio::telemetry_flags::kGpsFix;
       air.vehicle(id).endpoint().SetTelemetry(t);
     }
     radio::FireReport report;
@@ -76,6 +79,7 @@ TEST(LcmMessages, VehicleStateCarriesTheTelemetryAndTheLink) {
   const vehicle_state_t m = ToVehicleState(fleet.server, 2, now_s, 123);
   EXPECT_EQ(m.utime, 123);
   EXPECT_EQ(m.receiver_id, 2);
+  EXPECT_TRUE(m.has_position);
   const common::EastNorth where = kFrame.ToLocal({m.lat_deg, m.lon_deg});
   EXPECT_NEAR(where.east_m, 200.0, 0.05);
   EXPECT_NEAR(where.north_m, 50.0, 0.05);
@@ -84,6 +88,30 @@ TEST(LcmMessages, VehicleStateCarriesTheTelemetryAndTheLink) {
   EXPECT_EQ(m.link_state, vehicle_state_t::LINK_OK);
   EXPECT_GE(m.telemetry_age_s, 0.0);
   EXPECT_LT(m.telemetry_age_s, 2.0);
+}
+
+// A vehicle registered but not heard yet has no position: the demo's log put
+// twelve of them at 0, 0 (off the coast of Africa on any outside map).
+TEST(LcmMessages, AVehicleNotHeardYetHasNoPosition) {
+  Server server(ServerConfig{}, kFrame);
+  server.AddVehicle(4);
+  const vehicle_state_t m = ToVehicleState(server, 4, 0.0, 1);
+  EXPECT_FALSE(m.has_position);
+  EXPECT_TRUE(std::isnan(m.lat_deg));
+  EXPECT_TRUE(std::isnan(m.lon_deg));
+  EXPECT_TRUE(std::isnan(m.altitude_m));
+  EXPECT_EQ(m.link_state, vehicle_state_t::LINK_NEVER_HEARD);
+}
+
+TEST(LcmMessages, AVehicleWithoutAGpsFixHasNoPositionButItsOtherTelemetry) {
+  HeardFleet fleet;
+  const vehicle_state_t m = ToVehicleState(fleet.server, 1, 5.0, 1);
+  EXPECT_FALSE(m.has_position);
+  EXPECT_TRUE(std::isnan(m.lat_deg));
+  EXPECT_TRUE(std::isnan(m.lon_deg));
+  EXPECT_DOUBLE_EQ(m.altitude_m, 60.0) << "the barometer needs no fix";
+  EXPECT_DOUBLE_EQ(m.battery_percent, 77.0);
+  EXPECT_EQ(m.link_state, vehicle_state_t::LINK_OK);
 }
 
 TEST(LcmMessages, TrackListAndMissionStatusCountTheTracks) {

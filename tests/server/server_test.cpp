@@ -117,6 +117,31 @@ TEST(Server, UploadsStartsAndRunsTheMission) {
             LinkState::kOk);
 }
 
+// mission_status_t said "running" while every drone flew home or had landed: the
+// mission is returning once no drone searches, and complete when all are down.
+TEST(Server, TheMissionIsReturningOnceNoDroneSearchesAndCompleteWhenAllHaveLanded) {
+  Fleet fleet;
+  const auto set_mode = [&](std::uint8_t id, radio::FlightMode mode, std::uint32_t time_ms) {
+    radio::Telemetry telemetry = Searching(0, 0, time_ms);
+    telemetry.mode = mode;
+    fleet.air.vehicle(id).endpoint().SetTelemetry(telemetry);
+  };
+  set_mode(1, radio::FlightMode::kReturnToLaunch, 2'000);
+  set_mode(2, radio::FlightMode::kLand, 2'000);
+  fleet.RunFor(10 * kSecond);
+  EXPECT_EQ(fleet.server.state(), MissionState::kRunning) << "vehicle 3 still searches";
+
+  set_mode(3, radio::FlightMode::kReturnToLaunch, 12'000);
+  fleet.air.Run(fleet.server, fleet.air.channel().now() + 10 * kSecond,
+                [&] { return fleet.server.state() != MissionState::kRunning; });
+  EXPECT_EQ(fleet.server.state(), MissionState::kReturning);
+
+  for (std::uint8_t id = 1; id <= 3; ++id) set_mode(id, radio::FlightMode::kLanded, 30'000);
+  fleet.air.Run(fleet.server, fleet.air.channel().now() + 10 * kSecond,
+                [&] { return fleet.server.state() == MissionState::kComplete; });
+  EXPECT_EQ(fleet.server.state(), MissionState::kComplete);
+}
+
 TEST(Server, SendsTheNearestOtherVehicleToANewFireAndResumesItOnConfirmation) {
   Fleet fleet;
   // Vehicle 1 sees a fire 150 m east of the origin; 2 is nearer than 3.
