@@ -1,6 +1,5 @@
 #include "message_json.hpp"
 
-#include <array>
 #include <charconv>
 #include <iterator>
 #include <string_view>

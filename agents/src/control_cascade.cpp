@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
 #include "fireswarm/common/angles.hpp"
 #include "fireswarm/common/time.hpp"

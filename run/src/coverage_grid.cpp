@@ -2,7 +2,6 @@
 #include <boost/geometry.hpp>
 #include <cmath>
 #include <limits>
-#include <numbers>
 
 #include "fireswarm/common/angles.hpp"
 #include "scoring.hpp"

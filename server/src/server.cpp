@@ -23,10 +23,6 @@ namespace {
 // grows its box to each query's endpoints as well).
 constexpr double kTransitMarginM = 1'000.0;
 
-double Seconds(common::Nanos t) {
-  return common::ToSeconds(t);
-}
-
 const ServerConfig& Validated(const ServerConfig& config) {
   config.Validate();
   return config;
@@ -133,7 +129,7 @@ void Server::LoadMission(std::vector<DroneMission> missions, double now_s) {
 }
 
 bool Server::Handle(const OperatorCommand& command, common::Nanos now, std::string* why) {
-  const double now_s = Seconds(now);
+  const double now_s = common::ToSeconds(now);
   const auto refuse = [&](std::string reason) {
     if (why != nullptr) *why = std::move(reason);
     return false;
@@ -209,7 +205,7 @@ void Server::Investigate(std::uint8_t vehicle, common::LatLon point, double radi
 }
 
 std::vector<radio::Burst> Server::Step(common::Nanos now, std::span<const std::uint8_t> received) {
-  const double now_s = Seconds(now);
+  const double now_s = common::ToSeconds(now);
   if (mission_) mission_->Step(now);
   std::vector<radio::Burst> bursts = scheduler_->Step(now, received);
   bytes_received_ += received.size();
@@ -310,7 +306,7 @@ void Server::AfterFusion(const FireObservation& observation, const FireReportRes
 }
 
 void Server::CheckInvestigations(common::Nanos now) {
-  const double now_s = Seconds(now);
+  const double now_s = common::ToSeconds(now);
   for (const Rejection& rejection : investigations_.Judge(now, fusion_)) {
     Record(now_s, TrackRejected{rejection.track_id, rejection.by_vehicle});
   }

@@ -4,7 +4,6 @@
 
 #include <chrono>
 #include <cstdint>
-#include <numbers>
 
 #include "fireswarm/common/angles.hpp"
 

@@ -4,7 +4,6 @@
 // in flight).
 #pragma once
 
-#include <numbers>
 #include <utility>
 #include <vector>
 
