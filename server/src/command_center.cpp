@@ -96,35 +96,37 @@ void CommandCenter::OnVehicleState(const vehicle_state_t& message) {
     vehicle.changed = true;
   }
   vehicle.last = message;
-  ExtendTrail(vehicle, message);
-  WatchSeparation(message);
+  std::optional<common::EastNorth> local;
+  if (message.has_position && common::IsValidLatLon({message.lat_deg, message.lon_deg})) {
+    const common::LatLon point{message.lat_deg, message.lon_deg};
+    if (!frame_) frame_.emplace(point);
+    local = frame_->ToLocal(point);
+  }
+  ExtendTrail(vehicle, message, local);
+  WatchSeparation(message, local);
   if (coverage_) coverage_->Mark(message);
 }
 
-void CommandCenter::ExtendTrail(Vehicle& vehicle, const vehicle_state_t& message) {
-  if (!message.has_position || !common::IsValidLatLon({message.lat_deg, message.lon_deg})) return;
-  const common::LatLon point{message.lat_deg, message.lon_deg};
-  if (!frame_) frame_.emplace(point);
-  const common::EastNorth local = frame_->ToLocal(point);
+void CommandCenter::ExtendTrail(Vehicle& vehicle, const vehicle_state_t& message,
+                                const std::optional<common::EastNorth>& local) {
+  if (!local) return;
   if (vehicle.trail_end_m &&
-      std::hypot(local.east_m - vehicle.trail_end_m->east_m,
-                 local.north_m - vehicle.trail_end_m->north_m) <= kTrailStepM) {
+      std::hypot(local->east_m - vehicle.trail_end_m->east_m,
+                 local->north_m - vehicle.trail_end_m->north_m) <= kTrailStepM) {
     return;
   }
   vehicle.trail_end_m = local;
-  vehicle.trail.push_back(nlohmann::json::array({point.lat_deg, point.lon_deg}));
+  vehicle.trail.push_back(nlohmann::json::array({message.lat_deg, message.lon_deg}));
   if (vehicle.trail.size() > config_.trail_points) vehicle.trail.pop_front();
   vehicle.trail_unsent = std::min(vehicle.trail_unsent + 1, vehicle.trail.size());
   vehicle.changed = true;
 }
 
-void CommandCenter::WatchSeparation(const vehicle_state_t& message) {
+void CommandCenter::WatchSeparation(const vehicle_state_t& message,
+                                    const std::optional<common::EastNorth>& local) {
   std::optional<Eigen::Vector3d> position_enu_m;
-  if (internal::IsAirborne(message) && common::IsValidLatLon({message.lat_deg, message.lon_deg})) {
-    const common::LatLon point{message.lat_deg, message.lon_deg};
-    if (!frame_) frame_.emplace(point);
-    const common::EastNorth local = frame_->ToLocal(point);
-    position_enu_m = Eigen::Vector3d(local.east_m, local.north_m, message.altitude_m);
+  if (local && internal::IsAirborne(message)) {
+    position_enu_m = Eigen::Vector3d(local->east_m, local->north_m, message.altitude_m);
   }
   separation_->Update(message.receiver_id, position_enu_m, internal::UtimeToSeconds(message.utime),
                       *alerts_);

@@ -1,4 +1,5 @@
 // Separation between airborne drones, from their reported positions.
+#include <cmath>
 #include <cstdio>
 #include <string>
 
@@ -19,11 +20,15 @@ void SeparationWatch::Update(int vehicle, const std::optional<Eigen::Vector3d>& 
   const double clear_m = kSeparationClearFactor * separation_m_;
   for (const auto& [other, other_position] : airborne_) {
     if (other == vehicle) continue;
+    // Squared distances: this runs for every pair at the telemetry rate.
+    const double distance2_m2 = (*position_enu_m - other_position).squaredNorm();
+    if (distance2_m2 > clear_m * clear_m) {
+      if (!close_.empty()) close_.erase(std::minmax(vehicle, other));
+      continue;
+    }
     const std::pair<int, int> pair = std::minmax(vehicle, other);
-    const double distance_m = (*position_enu_m - other_position).norm();
-    if (distance_m > clear_m) {
-      close_.erase(pair);
-    } else if (distance_m < separation_m_ && close_.insert(pair).second) {
+    const double distance_m = std::sqrt(distance2_m2);
+    if (distance_m < separation_m_ && close_.insert(pair).second) {
       char text[96];
       std::snprintf(text, sizeof text, "drones %d and %d: %.1f m apart", pair.first, pair.second,
                     distance_m);

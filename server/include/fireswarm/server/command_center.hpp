@@ -94,8 +94,11 @@ class CommandCenter {
     nlohmann::json row;
   };
   void UpdateTime(std::int64_t utime);
-  void ExtendTrail(Vehicle& vehicle, const vehicle_state_t& message);
-  void WatchSeparation(const vehicle_state_t& message);
+  // `local`: the message's position in frame_, nullopt without one.
+  void ExtendTrail(Vehicle& vehicle, const vehicle_state_t& message,
+                   const std::optional<common::EastNorth>& local);
+  void WatchSeparation(const vehicle_state_t& message,
+                       const std::optional<common::EastNorth>& local);
   nlohmann::json VehicleJson(const Vehicle& vehicle, bool whole_trail) const;
 
   CommandCenterConfig config_;
