@@ -185,6 +185,8 @@ const SchedulerConfig& MasterScheduler::config() const {
   return state_->config;
 }
 
-std::uint16_t MasterScheduler::next_sequence() const { return state_->next_sequence; }
+std::uint16_t MasterScheduler::next_sequence() const {
+  return state_->next_sequence;
+}
 
 }  // namespace fireswarm::radio

@@ -62,7 +62,8 @@ std::int32_t CommandLog::Open(OperatorCommand::Kind kind, double issued_s, std::
   record.kind = kind;
   record.issued_s = issued_s;
   record.reason = std::move(reason);
-  for (const std::uint8_t vehicle : targets) record.targets.push_back({vehicle, TargetState::kQueued, {}});
+  for (const std::uint8_t vehicle : targets)
+    record.targets.push_back({vehicle, TargetState::kQueued, {}});
   record.version = ++version_;
   records_.push_back(std::move(record));
   return records_.back().id;

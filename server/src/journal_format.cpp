@@ -113,8 +113,8 @@ std::string CommandKind(OperatorCommand::Kind command) {
 
 bool IsCommandKind(const std::string& kind) {
   static const std::set<std::string> kKinds = {
-      "start", "abort",  "return_all", "investigate_order", "hold",      "resume",
-      "return", "land", "hold_all",   "resume_all"};
+      "start",  "abort",  "return_all", "investigate_order", "hold",
+      "resume", "return", "land",       "hold_all",          "resume_all"};
   return kKinds.contains(kind);
 }
 

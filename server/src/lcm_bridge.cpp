@@ -33,8 +33,8 @@ void CsvRows(std::ostream& out, const vehicle_state_t& m) {
       << ',' << int{m.flight_mode} << ',' << m.flags << ',' << m.pending_reports << ','
       << m.mission_id << ',' << m.waypoint_index << ',' << int{m.link_state} << ','
       << m.telemetry_age_s << ',' << m.missed_replies << ',' << m.telemetry_hz << ','
-      << m.progress_fraction << ',' << int{m.task} << ',' << m.task_track_id << ','
-      << m.lane_index << ',' << m.lane_count << '\n';
+      << m.progress_fraction << ',' << int{m.task} << ',' << m.task_track_id << ',' << m.lane_index
+      << ',' << m.lane_count << '\n';
 }
 
 std::string CsvHeader(const fire_track_list_t&) {

@@ -115,8 +115,7 @@ std::optional<std::string> Server::HandleDroneOrder(const OperatorCommand& comma
     return "vehicle " + std::to_string(vehicle) + " is not registered";
   }
   *command_id = commands_.Open(command.kind, now_s, command.reason, {vehicle});
-  const CommandAccepted accepted{command.kind, vehicle, command.point, command.reason,
-                                 *command_id};
+  const CommandAccepted accepted{command.kind, vehicle, command.point, command.reason, *command_id};
   Record(now_s, accepted);
   radio::Command order;
   order.type = RadioCommandOf(command.kind);
@@ -125,8 +124,8 @@ std::optional<std::string> Server::HandleDroneOrder(const OperatorCommand& comma
   return std::nullopt;
 }
 
-std::optional<std::string> Server::HandleInvestigation(const OperatorCommand& command,
-                                                       double now_s, std::int32_t* command_id) {
+std::optional<std::string> Server::HandleInvestigation(const OperatorCommand& command, double now_s,
+                                                       std::int32_t* command_id) {
   if (!common::IsValidLatLon(command.point)) return "the point is not a valid lat/lon";
   if (command.vehicle != 0 && !registry_.Contains(command.vehicle)) {
     return "vehicle " + std::to_string(command.vehicle) + " is not registered";

@@ -121,7 +121,8 @@ TaskView TaskOf(const Server& server, std::uint8_t vehicle, double now_s) {
   switch (*phase) {
     case DronePhase::kUploading:
     case DronePhase::kStarting:
-      view.task = VehicleTask::kUploading;
+      // A mission loaded but not started is not going up yet.
+      if (server.state() != MissionState::kIdle) view.task = VehicleTask::kUploading;
       break;
     case DronePhase::kFlying:
       view.task = VehicleTask::kLane;

@@ -45,8 +45,8 @@ struct CommandTarget {
 struct CommandRecord {
   std::int32_t id = 0;  ///< from 1
   OperatorCommand::Kind kind = OperatorCommand::Kind::kStart;
-  double issued_s = 0.0;  ///< mission time the server accepted it, s
-  std::string reason;     ///< the operator's free text
+  double issued_s = 0.0;               ///< mission time the server accepted it, s
+  std::string reason;                  ///< the operator's free text
   std::vector<CommandTarget> targets;  ///< ascending receiver ID
   std::uint64_t version = 0;           ///< CommandLog::version() when it last changed
 

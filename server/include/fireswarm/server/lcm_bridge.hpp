@@ -115,6 +115,10 @@ class LcmBridge {
   /// When Publish next has something to publish, mission seconds.
   double NextPublishS() const;
 
+  /// The bridge's LCM instance (null without a URL): in-process listeners
+  /// subscribe here, as memq:// delivers only within the instance that publishes.
+  lcm::LCM* lcm() { return lcm_.get(); }
+
   std::uint64_t published() const { return published_; }
   std::uint64_t rejected_commands() const { return rejected_commands_; }
 

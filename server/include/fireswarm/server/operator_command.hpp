@@ -27,9 +27,9 @@ struct OperatorCommand {
   /// Receiver ID: required by kRetaskVehicle, kHold, kResume, kReturnVehicle and
   /// kLand; kInvestigatePoint: 0 = the server chooses; others: unused (0).
   std::uint8_t vehicle = 0;
-  common::LatLon point;      ///< kInvestigatePoint, kRetaskVehicle
-  double radius_m = 0.0;     ///< 0 = the configured radius
-  std::string reason;        ///< for the journal
+  common::LatLon point;   ///< kInvestigatePoint, kRetaskVehicle
+  double radius_m = 0.0;  ///< 0 = the configured radius
+  std::string reason;     ///< for the journal
 };
 
 /// The command's name in the journal and the command-center API: "start", "abort",

@@ -58,8 +58,8 @@ struct TaskView {
 /// given up (handed over and not heard since, or its upload failed) is kGivenUp;
 /// then its telemetry's mode says landed, landing, returning, holding or
 /// investigating; then an investigation the server ordered and that still runs;
-/// then its mission phase (uploading or starting: kUploading, flying: kLane, done:
-/// kLanded); else kIdle.
+/// then its mission phase once the mission started (uploading or starting:
+/// kUploading, flying: kLane, done: kLanded); else kIdle.
 TaskView TaskOf(const Server& server, std::uint8_t vehicle, double now_s);
 
 }  // namespace fireswarm::server
