@@ -1,7 +1,7 @@
-// The server core at run time: configuration checks, operator commands, the
-// radio step and what follows from its events (telemetry, fire reports,
-// investigations, mission state). The journal half (recording entries and
-// Server::Restore) is in server_journal.cpp.
+// The server core at run time: configuration checks, the radio step and what
+// follows from its events (telemetry, fire reports, investigations, mission
+// state). Operator commands are in server_commands.cpp; the journal half
+// (recording entries and Server::Restore) is in server_journal.cpp.
 #include "fireswarm/server/server.hpp"
 
 #include <algorithm>

@@ -36,7 +36,8 @@ radio::CommandType RadioCommandOf(Kind kind) {
     case Kind::kRetaskVehicle:
       break;
   }
-  return radio::CommandType::kAbort;
+  // Not called for these: should it ever be, the harmless order.
+  return radio::CommandType::kHold;
 }
 
 }  // namespace
@@ -207,6 +208,11 @@ void Server::UpdateStartCommand(const radio::SchedulerEvent& event) {
     } else if (progress.phase == DronePhase::kFailed) {
       commands_.Advance(start_command_id_, id, TargetState::kFailed, progress.failure);
     }
+  }
+  // Every target finished: nothing more to follow.
+  const TargetState summary = commands_.Find(start_command_id_)->Summary();
+  if (summary == TargetState::kAcknowledged || summary == TargetState::kFailed) {
+    start_command_id_ = 0;
   }
 }
 
