@@ -94,6 +94,14 @@ void MasterScheduler::SetTelemetryRate(std::uint8_t vehicle, double telemetry_hz
   v.period = period;
 }
 
+double MasterScheduler::TelemetryRateHz(std::uint8_t vehicle) const {
+  const auto found = state_->vehicles.find(vehicle);
+  if (found == state_->vehicles.end()) {
+    throw std::invalid_argument("unknown vehicle " + std::to_string(vehicle));
+  }
+  return 1e9 / static_cast<double>(found->second.period.count());
+}
+
 namespace {
 
 RequestId Enqueue(SchedulerState& state, std::uint8_t vehicle, Message request) {
@@ -177,6 +185,8 @@ const SchedulerConfig& MasterScheduler::config() const {
   return state_->config;
 }
 
-std::uint16_t MasterScheduler::next_sequence() const { return state_->next_sequence; }
+std::uint16_t MasterScheduler::next_sequence() const {
+  return state_->next_sequence;
+}
 
 }  // namespace fireswarm::radio

@@ -58,7 +58,8 @@ std::vector<std::uint8_t> RequestFrame(const SchedulerState& state, const Vehicl
   return frame;
 }
 
-// Commits RequestFrame(): marks the request sent; returns the ID of its ack.
+// Commits RequestFrame() to the burst planned at `now` (it starts one turnaround
+// later): marks the request sent and says so; returns the ID of its ack.
 MessageId MarkRequestSent(SchedulerState& state, VehicleState& v, Nanos now) {
   PendingRequest& request = v.requests.front();
   if (!request.sent) {
@@ -67,6 +68,8 @@ MessageId MarkRequestSent(SchedulerState& state, VehicleState& v, Nanos now) {
   }
   ++state.stats.requests_sent;
   v.last_request_turn = now;
+  state.events.emplace_back(
+      RequestSent{request.id, v.id, request.retries, now + state.config.timing.turnaround});
   return *AckIdFor(IdOf(request.message));
 }
 

@@ -180,6 +180,14 @@ std::vector<std::uint8_t> Investigations::EndForConfirmed(std::int32_t track_id,
   return ended;
 }
 
+void Investigations::CallOff(std::uint8_t vehicle, double now_s) {
+  for (Investigation& i : investigations_) {
+    if (i.vehicle != vehicle || i.until_s <= now_s) continue;
+    i.until_s = now_s;
+    i.judged = true;
+  }
+}
+
 common::Nanos Investigations::VerdictDue(const Investigation& investigation) const {
   return common::FromSeconds(investigation.until_s + config_.reject_grace_s);
 }

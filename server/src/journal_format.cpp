@@ -2,6 +2,7 @@
 // (journal_format.hpp lists them). The only place that JSON is written or read.
 #include "fireswarm/server/journal_format.hpp"
 
+#include <set>
 #include <stdexcept>
 #include <type_traits>
 #include <utility>
@@ -100,35 +101,37 @@ FireObservation ObservationFrom(const nlohmann::json& j) {
   return o;
 }
 
-const char* CommandKind(OperatorCommand::Kind command) {
-  switch (command) {
-    case OperatorCommand::Kind::kStart:
-      return "start";
-    case OperatorCommand::Kind::kAbort:
-      return "abort";
-    case OperatorCommand::Kind::kReturnAll:
-      return "return_all";
-    case OperatorCommand::Kind::kInvestigatePoint:
-    case OperatorCommand::Kind::kRetaskVehicle:
-      return "investigate_order";
-    // Per-drone and fleet orders: the server core takes them next (wt-core).
-    case OperatorCommand::Kind::kHold:
-    case OperatorCommand::Kind::kResume:
-    case OperatorCommand::Kind::kReturnVehicle:
-    case OperatorCommand::Kind::kLand:
-    case OperatorCommand::Kind::kHoldAll:
-    case OperatorCommand::Kind::kResumeAll:
-      break;
+// The record kind of a command: its name (operator_command.hpp), but one kind for
+// both investigation orders (as journals have always had it).
+std::string CommandKind(OperatorCommand::Kind command) {
+  if (command == OperatorCommand::Kind::kInvestigatePoint ||
+      command == OperatorCommand::Kind::kRetaskVehicle) {
+    return "investigate_order";
   }
-  return "command";
+  return ToString(command);
 }
+
+bool IsCommandKind(const std::string& kind) {
+  static const std::set<std::string> kKinds = {
+      "start",  "abort",  "return_all", "investigate_order", "hold",
+      "resume", "return", "land",       "hold_all",          "resume_all"};
+  return kKinds.contains(kind);
+}
+
+constexpr int kFirstCommand = static_cast<int>(OperatorCommand::Kind::kStart);
+constexpr int kLastCommand = static_cast<int>(OperatorCommand::Kind::kResumeAll);
 
 CommandAccepted CommandFrom(const nlohmann::json& data) {
   CommandAccepted c;
-  c.command = static_cast<OperatorCommand::Kind>(data.at("command").get<int>());
+  const int command = data.at("command").get<int>();
+  if (command < kFirstCommand || command > kLastCommand) {
+    throw std::runtime_error("unknown command " + std::to_string(command));
+  }
+  c.command = static_cast<OperatorCommand::Kind>(command);
   c.vehicle = data.at("vehicle").get<std::uint8_t>();
   c.point = {data.at("lat_deg").get<double>(), data.at("lon_deg").get<double>()};
   c.reason = data.at("reason").get<std::string>();
+  c.command_id = data.value("command_id", std::int32_t{0});
   return c;
 }
 
@@ -137,7 +140,7 @@ CommandAccepted CommandFrom(const nlohmann::json& data) {
 JournalEvent EventFrom(const std::string& kind, const nlohmann::json& data) {
   if (kind == "vehicle") return VehicleAdded{data.at("id").get<int>()};
   if (kind == "mission") return MissionLoaded{MissionsFrom(data.at("drones"))};
-  if (kind == "start" || kind == "abort" || kind == "return_all" || kind == "investigate_order") {
+  if (IsCommandKind(kind)) {
     CommandAccepted command = CommandFrom(data);
     if (kind != CommandKind(command.command)) {
       throw std::runtime_error("kind " + kind + " holds command " +
@@ -208,11 +211,13 @@ nlohmann::json JournalDataOf(const JournalEntry& entry) {
             return {{"drones", MissionsJson(e.drones)}};
           },
           [](const CommandAccepted& e) -> nlohmann::json {
-            return {{"command", static_cast<int>(e.command)},
-                    {"vehicle", e.vehicle},
-                    {"lat_deg", e.point.lat_deg},
-                    {"lon_deg", e.point.lon_deg},
-                    {"reason", e.reason}};
+            nlohmann::json command = {{"command", static_cast<int>(e.command)},
+                                      {"vehicle", e.vehicle},
+                                      {"lat_deg", e.point.lat_deg},
+                                      {"lon_deg", e.point.lon_deg},
+                                      {"reason", e.reason}};
+            if (e.command_id > 0) command["command_id"] = e.command_id;
+            return command;
           },
           [](const PhaseChanged& e) -> nlohmann::json {
             return {{"vehicle", e.vehicle}, {"phase", static_cast<int>(e.phase)}};

@@ -22,7 +22,8 @@ std::string CsvHeader(const vehicle_state_t&) {
          "north_mps,"
          "velocity_east_mps,velocity_up_mps,roll_deg,pitch_deg,heading_deg,battery_v,"
          "battery_percent,flight_mode,flags,pending_reports,mission_id,waypoint_index,"
-         "link_state,telemetry_age_s,missed_replies";
+         "link_state,telemetry_age_s,missed_replies,telemetry_hz,progress_fraction,task,"
+         "task_track_id,lane_index,lane_count";
 }
 void CsvRows(std::ostream& out, const vehicle_state_t& m) {
   out << m.utime << ',' << m.receiver_id << ',' << int{m.has_position} << ',' << m.vehicle_time_ms
@@ -31,7 +32,9 @@ void CsvRows(std::ostream& out, const vehicle_state_t& m) {
       << m.pitch_deg << ',' << m.heading_deg << ',' << m.battery_v << ',' << m.battery_percent
       << ',' << int{m.flight_mode} << ',' << m.flags << ',' << m.pending_reports << ','
       << m.mission_id << ',' << m.waypoint_index << ',' << int{m.link_state} << ','
-      << m.telemetry_age_s << ',' << m.missed_replies << '\n';
+      << m.telemetry_age_s << ',' << m.missed_replies << ',' << m.telemetry_hz << ','
+      << m.progress_fraction << ',' << int{m.task} << ',' << m.task_track_id << ',' << m.lane_index
+      << ',' << m.lane_count << '\n';
 }
 
 std::string CsvHeader(const fire_track_list_t&) {
@@ -65,6 +68,24 @@ void CsvRows(std::ostream& out, const radio_stats_t& m) {
   out << m.utime << ',' << m.window_s << ',' << m.busy_fraction << ',' << m.payload_bytes_per_s
       << ',' << m.frames_sent << ',' << m.frames_received << ',' << m.checksum_errors << ','
       << m.collisions << ',' << m.retries << ',' << m.timeouts << '\n';
+}
+
+// A text field as one CSV cell (RFC 4180: quoted, quotes doubled).
+std::string CsvText(const std::string& text) {
+  std::string cell = "\"";
+  for (const char c : text) cell += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return cell + '"';
+}
+
+// One row per target.
+std::string CsvHeader(const command_status_t&) {
+  return "utime,command_id,command,issued_utime,target_id,target_state,reason";
+}
+void CsvRows(std::ostream& out, const command_status_t& m) {
+  for (std::size_t i = 0; i < m.target_ids.size(); ++i) {
+    out << m.utime << ',' << m.command_id << ',' << int{m.command} << ',' << m.issued_utime << ','
+        << m.target_ids[i] << ',' << int{m.target_states[i]} << ',' << CsvText(m.reason) << '\n';
+  }
 }
 
 std::string CsvName(const char* channel) {
@@ -156,6 +177,14 @@ void LcmBridge::Emit(const char* channel, const Message& message, std::int64_t u
 
 void LcmBridge::Publish(const Server& server, double now_s, std::int64_t utime,
                         std::int64_t utime_at_zero) {
+  // Command status on change, not at a rate: an operator waits for it.
+  if (server.commands_version() > commands_version_) {
+    for (const CommandRecord& record : server.commands()) {
+      if (record.version <= commands_version_) continue;
+      Emit(kCommandStatusChannel, ToCommandStatus(record, utime, utime_at_zero), utime);
+    }
+    commands_version_ = server.commands_version();
+  }
   const LcmRates& rates = config_.rates;
   const auto due = [&](const char* channel, double hz) {
     double& next = next_s_[channel];

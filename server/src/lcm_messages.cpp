@@ -8,6 +8,7 @@
 #include "fireswarm/common/north_east.hpp"
 #include "fireswarm/common/time.hpp"
 #include "fireswarm/server/lcm_bridge.hpp"
+#include "fireswarm/server/vehicle_task.hpp"
 
 namespace fireswarm::server {
 
@@ -43,6 +44,13 @@ vehicle_state_t ToVehicleState(const Server& server, std::uint8_t vehicle, doubl
   m.missed_replies =
       static_cast<std::int32_t>(std::min<std::uint32_t>(state.missed_replies, INT32_MAX));
   m.telemetry_age_s = server.registry().TelemetryAgeS(vehicle, now_s).value_or(-1.0);
+  m.telemetry_hz = server.scheduler().TelemetryRateHz(vehicle);
+  const TaskView task = TaskOf(server, vehicle, now_s);
+  m.progress_fraction = task.progress_fraction;
+  m.task = static_cast<std::int8_t>(task.task);
+  m.task_track_id = task.track_id;
+  m.lane_index = task.lane_index;
+  m.lane_count = task.lane_count;
   constexpr double kUnknown = std::numeric_limits<double>::quiet_NaN();
   if (!state.telemetry) {
     // Registered but not heard yet: no position rather than one at (0, 0).
@@ -178,6 +186,24 @@ std::optional<OperatorCommand> FromLcm(const operator_command_t& message, std::s
     case operator_command_t::RETASK_VEHICLE:
       command.kind = OperatorCommand::Kind::kRetaskVehicle;
       break;
+    case operator_command_t::HOLD:
+      command.kind = OperatorCommand::Kind::kHold;
+      break;
+    case operator_command_t::RESUME:
+      command.kind = OperatorCommand::Kind::kResume;
+      break;
+    case operator_command_t::RETURN_VEHICLE:
+      command.kind = OperatorCommand::Kind::kReturnVehicle;
+      break;
+    case operator_command_t::LAND:
+      command.kind = OperatorCommand::Kind::kLand;
+      break;
+    case operator_command_t::HOLD_ALL:
+      command.kind = OperatorCommand::Kind::kHoldAll;
+      break;
+    case operator_command_t::RESUME_ALL:
+      command.kind = OperatorCommand::Kind::kResumeAll;
+      break;
     default:
       return refuse("unknown command " + std::to_string(message.command));
   }
@@ -193,6 +219,22 @@ std::optional<OperatorCommand> FromLcm(const operator_command_t& message, std::s
   command.radius_m = message.radius_m;
   command.reason = message.reason;
   return command;
+}
+
+command_status_t ToCommandStatus(const CommandRecord& record, std::int64_t utime,
+                                 std::int64_t utime_at_zero) {
+  command_status_t m{};
+  m.utime = utime;
+  m.command_id = record.id;
+  m.command = static_cast<std::int8_t>(record.kind);
+  m.issued_utime = Utime(utime_at_zero, record.issued_s);
+  m.reason = record.reason;
+  for (const CommandTarget& target : record.targets) {
+    m.target_ids.push_back(target.vehicle);
+    m.target_states.push_back(static_cast<std::int8_t>(target.state));
+  }
+  m.target_count = static_cast<std::int16_t>(m.target_ids.size());
+  return m;
 }
 
 }  // namespace fireswarm::server

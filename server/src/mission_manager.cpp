@@ -286,6 +286,15 @@ bool MissionManager::AllStarted() const {
   });
 }
 
+double MissionManager::WaypointFraction(std::uint8_t vehicle) const {
+  const DroneProgress& progress = Find(vehicle).progress;
+  if (progress.phase == DronePhase::kDone) return 1.0;
+  if (progress.waypoint_count == 0) return 0.0;
+  return static_cast<double>(
+             std::min<std::size_t>(progress.waypoint_index, progress.waypoint_count)) /
+         static_cast<double>(progress.waypoint_count);
+}
+
 double MissionManager::WaypointFraction() const {
   std::size_t total = 0;
   std::size_t passed = 0;

@@ -1,7 +1,7 @@
-// The server core at run time: configuration checks, operator commands, the
-// radio step and what follows from its events (telemetry, fire reports,
-// investigations, mission state). The journal half (recording entries and
-// Server::Restore) is in server_journal.cpp.
+// The server core at run time: configuration checks, the radio step and what
+// follows from its events (telemetry, fire reports, investigations, mission
+// state). Operator commands are in server_commands.cpp; the journal half
+// (recording entries and Server::Restore) is in server_journal.cpp.
 #include "fireswarm/server/server.hpp"
 
 #include <algorithm>
@@ -128,90 +128,6 @@ void Server::LoadMission(std::vector<DroneMission> missions, double now_s) {
   Record(now_s, std::move(loaded));
 }
 
-bool Server::Handle(const OperatorCommand& command, common::Nanos now, std::string* why) {
-  const double now_s = common::ToSeconds(now);
-  const auto refuse = [&](std::string reason) {
-    if (why != nullptr) *why = std::move(reason);
-    return false;
-  };
-  const CommandAccepted record{command.kind, command.vehicle, command.point, command.reason};
-  using Kind = OperatorCommand::Kind;
-  switch (command.kind) {
-    case Kind::kStart:
-      if (!mission_) return refuse("no mission is loaded");
-      if (state_ != MissionState::kIdle) return refuse("the mission has already started");
-      mission_->Begin();
-      mission_started_s_ = now_s;
-      state_ = MissionState::kUploading;
-      Record(now_s, record);
-      return true;
-    case Kind::kAbort:
-      SendToAll(radio::CommandType::kAbort);
-      state_ = MissionState::kAborted;
-      Record(now_s, record);
-      return true;
-    case Kind::kReturnAll:
-      SendToAll(radio::CommandType::kReturnToLaunch);
-      if (state_ != MissionState::kAborted) state_ = MissionState::kReturning;
-      Record(now_s, record);
-      return true;
-    case Kind::kInvestigatePoint:
-    case Kind::kRetaskVehicle: {
-      if (!common::IsValidLatLon(command.point)) return refuse("the point is not a valid lat/lon");
-      if (command.vehicle != 0 && !registry_.Contains(command.vehicle)) {
-        return refuse("vehicle " + std::to_string(command.vehicle) + " is not registered");
-      }
-      if (command.vehicle == 0 && command.kind == Kind::kRetaskVehicle) {
-        return refuse("re-task needs a vehicle");
-      }
-      const Eigen::Vector2d point_en_m = LocalM(frame_, command.point);
-      const double radius_m = investigations_.RadiusM(command.radius_m);
-      if (std::optional<std::string> no = investigations_.CircleRefusal(point_en_m, radius_m)) {
-        return refuse(*no);
-      }
-      std::optional<std::uint8_t> vehicle;
-      if (command.vehicle != 0) {
-        std::optional<std::string> no =
-            investigations_.ApproachRefusal(registry_, command.vehicle, point_en_m, radius_m);
-        if (no) return refuse(*no);
-        vehicle = command.vehicle;
-      } else {
-        std::string why_none;
-        vehicle =
-            investigations_.BestPlacedFor(registry_, point_en_m, radius_m, 0, now_s, &why_none);
-        if (!vehicle) return refuse(why_none);
-      }
-      Record(now_s, record);
-      Investigate(*vehicle, command.point, command.radius_m, 0, now_s);
-      return true;
-    }
-    // Per-drone and fleet orders: the server core takes them next (wt-core).
-    case Kind::kHold:
-    case Kind::kResume:
-    case Kind::kReturnVehicle:
-    case Kind::kLand:
-    case Kind::kHoldAll:
-    case Kind::kResumeAll:
-      return refuse("this server does not take that command yet");
-  }
-  return refuse("unknown command");
-}
-
-void Server::SendToAll(radio::CommandType type) {
-  radio::Command command;
-  command.type = type;
-  for (const std::uint8_t id : registry_.ids()) scheduler_->SendCommand(id, command);
-}
-
-void Server::Investigate(std::uint8_t vehicle, common::LatLon point, double radius_m,
-                         std::int32_t track_id, double now_s) {
-  const InvestigationOrder order =
-      investigations_.Open(registry_, vehicle, point, radius_m, track_id, now_s);
-  scheduler_->SendCommand(vehicle, order.command);
-  Record(now_s, InvestigationOpened{vehicle, track_id, order.investigation.until_s,
-                                    order.investigation.point_en_m});
-}
-
 std::vector<radio::Burst> Server::Step(common::Nanos now, std::span<const std::uint8_t> received) {
   const double now_s = common::ToSeconds(now);
   if (mission_) mission_->Step(now);
@@ -250,8 +166,10 @@ void Server::OnEvent(const radio::SchedulerEvent& event, double now_s) {
   } else if (const auto* silent = std::get_if<radio::VehicleSilent>(&event)) {
     registry_.OnMissedReply(silent->vehicle);
   }
+  commands_.OnEvent(event);
   if (!mission_) return;
   mission_->OnEvent(event);
+  UpdateStartCommand(event);
   for (const std::uint8_t id : mission_->vehicles()) {
     const DronePhase phase = mission_->progress(id).phase;
     const auto journaled = journaled_phases_.find(id);

@@ -70,6 +70,9 @@ void Server::Replay(const JournalEntry& entry) {
           [&](const MissionLoaded& e) { LoadMission(e.drones, t_s); },
           [&](const CommandAccepted& e) {
             using Kind = OperatorCommand::Kind;
+            // Its ID is taken; a journal from before IDs took the next one.
+            commands_.Reserve(e.command_id > 0 ? e.command_id : commands_.next_id());
+            CallOff(e, t_s);
             if (e.command == Kind::kStart) {
               need_mission("start");
               state_ = MissionState::kUploading;
@@ -79,7 +82,9 @@ void Server::Replay(const JournalEntry& entry) {
             } else if (e.command == Kind::kReturnAll) {
               if (state_ != MissionState::kAborted) state_ = MissionState::kReturning;
             }
-            // An investigation order is carried out by its InvestigationOpened entry.
+            // An investigation order is carried out by its InvestigationOpened
+            // entry; holds, resumes, returns and landings left nothing to rebuild
+            // but the investigations they called off.
           },
           [&](const PhaseChanged& e) {
             need_mission("phase");

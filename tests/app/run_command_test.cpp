@@ -17,8 +17,10 @@
 #include <vector>
 
 #include "app/run_fireswarm.hpp"
+#include "fireswarm/command_status_t.hpp"
 #include "fireswarm/fire_track_list_t.hpp"
 #include "fireswarm/mission_status_t.hpp"
+#include "fireswarm/operator_command_t.hpp"
 #include "fireswarm/radio_stats_t.hpp"
 #include "fireswarm/vehicle_state_t.hpp"
 
@@ -209,6 +211,12 @@ TEST_F(RunCommandTest, LogsTheServerOnLcmInSimulatedTime) {
       EXPECT_EQ(Decode<fireswarm::fire_track_list_t>(event).utime, event.timestamp);
     } else if (event.channel == "FIRESWARM_RADIO_STATS") {
       EXPECT_EQ(Decode<fireswarm::radio_stats_t>(event).utime, event.timestamp);
+    } else if (event.channel == "FIRESWARM_COMMAND_STATUS") {
+      // The run's start, followed to each drone.
+      const auto status = Decode<fireswarm::command_status_t>(event);
+      EXPECT_EQ(status.utime, event.timestamp);
+      EXPECT_EQ(status.command, fireswarm::operator_command_t::START);
+      EXPECT_EQ(status.target_count, 2);
     } else {
       ADD_FAILURE() << "unexpected channel " << event.channel;
     }

@@ -127,6 +127,71 @@ TEST_P(MasterSchedulerModes, LostRepliesAreRetriedWithTheSameSequence) {
   EXPECT_EQ(net.vehicle(1).endpoint.stats().duplicate_requests, 2U);
 }
 
+// The server learns when a command's frame went out (the command center shows it
+// as "sent"): one RequestSent per transmission, in the burst that carried it,
+// before the request finishes.
+TEST_P(MasterSchedulerModes, EverySendOfARequestIsReportedWithTheBurstThatCarriedIt) {
+  SimNet net(ServerConfig(GetParam()), 1);
+  net.server().AddVehicle(1, 1.0, seconds(100));  // no telemetry in the way
+  const RequestId id = net.server().SendCommand(1, Command{{}, CommandType::kHold});
+  int acks_dropped = 0;
+  net.drop_reply = [&](std::uint8_t, const Burst& burst) {
+    return burst.bytes.at(4) == static_cast<std::uint8_t>(MessageId::kCommandAck) &&
+           acks_dropped++ < 1;
+  };
+  std::vector<Nanos> command_bursts;  // starts of the bursts holding the command
+  net.drop_server_burst = [&](const Burst& burst) {
+    for (const auto& [receiver, message] : DecodeServerBurst(burst)) {
+      if (std::holds_alternative<Command>(message)) command_bursts.push_back(burst.start);
+    }
+    return false;
+  };
+  net.RunUntil(seconds(5));
+  const auto sent = net.EventsOf<RequestSent>();
+  ASSERT_EQ(sent.size(), 2U);
+  ASSERT_EQ(command_bursts.size(), 2U);
+  for (std::size_t i = 0; i < sent.size(); ++i) {
+    EXPECT_EQ(sent[i].id, id);
+    EXPECT_EQ(sent[i].vehicle, 1);
+    EXPECT_EQ(sent[i].attempt, static_cast<int>(i));
+    EXPECT_EQ(sent[i].sent, command_bursts[i]);
+  }
+  // Sent first, finished after.
+  std::vector<std::size_t> order;
+  for (std::size_t i = 0; i < net.events().size(); ++i) {
+    if (std::holds_alternative<RequestSent>(net.events()[i]) ||
+        std::holds_alternative<RequestFinished>(net.events()[i])) {
+      order.push_back(net.events()[i].index());
+    }
+  }
+  const std::size_t sent_index = SchedulerEvent{RequestSent{}}.index();
+  const std::size_t finished_index = SchedulerEvent{RequestFinished{}}.index();
+  EXPECT_EQ(order, (std::vector<std::size_t>{sent_index, sent_index, finished_index}));
+}
+
+// A request queued behind another is not sent (nor said to be) before the first
+// one finished, here failed unanswered.
+TEST_P(MasterSchedulerModes, ARequestWaitingItsTurnIsNotReportedSent) {
+  SimNet net(ServerConfig(GetParam()), 1);
+  net.server().AddVehicle(1, 1.0, seconds(100));
+  const RequestId first = net.server().SendCommand(1, Command{{}, CommandType::kHold});
+  const RequestId second = net.server().SendCommand(1, Command{{}, CommandType::kResume});
+  net.drop_reply = [](std::uint8_t, const Burst&) { return true; };  // the vehicle is unheard
+  net.RunUntil(seconds(5));
+  bool first_finished = false;
+  int second_sent = 0;
+  for (const SchedulerEvent& e : net.events()) {
+    if (const auto* f = std::get_if<RequestFinished>(&e); f != nullptr && f->id == first) {
+      first_finished = true;
+    }
+    if (const auto* s = std::get_if<RequestSent>(&e); s != nullptr && s->id == second) {
+      EXPECT_TRUE(first_finished) << "request " << second << " sent before " << first << " ended";
+      ++second_sent;
+    }
+  }
+  EXPECT_EQ(second_sent, net.server().config().max_retries + 1);
+}
+
 TEST_P(MasterSchedulerModes, RequestFailsAfterMaxRetries) {
   SchedulerConfig config = ServerConfig(GetParam());
   config.max_retries = 3;
@@ -314,6 +379,17 @@ TEST(MasterScheduler, SilentVehicleIsReportedOnce) {
   for (const auto& e : server.TakeEvents()) silent += std::holds_alternative<VehicleSilent>(e);
   EXPECT_EQ(silent, 1);
   EXPECT_GE(server.stats().missed_replies, 2U);
+}
+
+TEST(MasterScheduler, TellsTheTelemetryRateItPollsAt) {
+  MasterScheduler server(ServerConfig(LinkMode::kSlots));
+  server.AddVehicle(1, 4.0);
+  server.AddVehicle(2);  // default_telemetry_hz
+  EXPECT_DOUBLE_EQ(server.TelemetryRateHz(1), 4.0);
+  EXPECT_DOUBLE_EQ(server.TelemetryRateHz(2), server.config().default_telemetry_hz);
+  server.SetTelemetryRate(2, 0.5);
+  EXPECT_DOUBLE_EQ(server.TelemetryRateHz(2), 0.5);
+  EXPECT_THROW(server.TelemetryRateHz(3), std::invalid_argument);
 }
 
 TEST(MasterScheduler, RejectsBadVehiclesAndConfig) {

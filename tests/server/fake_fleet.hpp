@@ -33,6 +33,7 @@ class FakeVehicle final : public radio::VehicleRequestHandler {
 
   radio::CommandResult OnCommand(const radio::Command& command) override {
     commands_.push_back(command);
+    if (refused.contains(command.type)) return radio::CommandResult::kRejected;
     if (command.type != radio::CommandType::kStartMission) return radio::CommandResult::kAccepted;
     if (!complete_ || command.mission_id != mission_id_) return radio::CommandResult::kRejected;
     if (refusals_left_ > 0) {
@@ -61,6 +62,9 @@ class FakeVehicle final : public radio::VehicleRequestHandler {
   bool complete() const { return complete_; }
   int starts_accepted() const { return starts_accepted_; }
   const std::vector<radio::Command>& commands() const { return commands_; }
+
+  /// Commands of these types are refused (as a drone on the ground refuses a hold).
+  std::set<radio::CommandType> refused;
 
  private:
   static radio::VehicleEndpointConfig Config(std::uint8_t id, radio::LinkMode mode) {

@@ -104,6 +104,41 @@ TEST(JournalFormat, KeepsTheRecordNamesAndFieldsOfTheFormatBeforeTypes) {
       JournalDataOf({0.0, 1, LanesHandedOver{5, "lost", {}, 0}}).contains("straight_joins"));
 }
 
+// The per-drone and fleet orders have records of their own, with the command's ID;
+// a command record written before IDs existed reads as ID 0 (unknown).
+TEST(JournalFormat, EveryCommandKindComesBackWithItsId) {
+  using Kind = OperatorCommand::Kind;
+  const std::pair<Kind, const char*> kinds[] = {{Kind::kStart, "start"},
+                                                {Kind::kAbort, "abort"},
+                                                {Kind::kReturnAll, "return_all"},
+                                                {Kind::kInvestigatePoint, "investigate_order"},
+                                                {Kind::kRetaskVehicle, "investigate_order"},
+                                                {Kind::kHold, "hold"},
+                                                {Kind::kResume, "resume"},
+                                                {Kind::kReturnVehicle, "return"},
+                                                {Kind::kLand, "land"},
+                                                {Kind::kHoldAll, "hold_all"},
+                                                {Kind::kResumeAll, "resume_all"}};
+  std::int32_t id = 0;
+  for (const auto& [kind, name] : kinds) {
+    const JournalEntry entry{1.0, 2, CommandAccepted{kind, 7, {46.0, -74.5}, "smoke", ++id}};
+    SCOPED_TRACE(name);
+    EXPECT_EQ(JournalKindOf(entry), name);
+    EXPECT_EQ(JournalDataOf(entry).at("command_id"), id);
+    const auto back = std::get<CommandAccepted>(RoundTrip(entry).event);
+    EXPECT_EQ(back.command, kind);
+    EXPECT_EQ(back.vehicle, 7);
+    EXPECT_EQ(back.reason, "smoke");
+    EXPECT_EQ(back.command_id, id);
+  }
+  const nlohmann::json before_ids = {
+      {"command", 3}, {"vehicle", 0}, {"lat_deg", 0.0}, {"lon_deg", 0.0}, {"reason", ""}};
+  const JournalEntry old = JournalEntryOf({9, 2.0, "return_all", before_ids});
+  EXPECT_EQ(std::get<CommandAccepted>(old.event).command_id, 0);
+  EXPECT_FALSE(
+      JournalDataOf({0.0, 1, CommandAccepted{Kind::kAbort, 0, {}, "", 0}}).contains("command_id"));
+}
+
 TEST(JournalFormat, ABadRecordNamesItsLineKindAndProblem) {
   const auto error_of = [](const JournalRecord& record) -> std::string {
     try {
@@ -126,6 +161,13 @@ TEST(JournalFormat, ABadRecordNamesItsLineKindAndProblem) {
       {"command", 1}, {"vehicle", 0}, {"lat_deg", 0.0}, {"lon_deg", 0.0}, {"reason", ""}};
   EXPECT_THAT(error_of({6, 1.0, "abort", start}),
               HasSubstr("journal line 6 (abort): kind abort holds command 1 (start)"));
+  nlohmann::json hold = start;
+  hold["command"] = 6;
+  EXPECT_THAT(error_of({7, 1.0, "land", hold}),
+              HasSubstr("journal line 7 (land): kind land holds command 6 (hold)"));
+  hold["command"] = 12;
+  EXPECT_THAT(error_of({8, 1.0, "hold", hold}),
+              HasSubstr("journal line 8 (hold): unknown command 12"));
 }
 
 // tests/server/data/journal_v0.jsonl was written by `fireswarm serve --journal`
@@ -185,6 +227,8 @@ TEST(JournalFormat, AJournalOfTheFormatBeforeVersionsStillRestores) {
   EXPECT_EQ(investigation.point_en_m, Eigen::Vector2d(0.5894692185614455, 1.21165584297034));
   // The radio starts half its sequence space after the last journaled (64).
   EXPECT_EQ(server.scheduler().next_sequence(), 64 + 0x8000);
+  // Its start had no ID yet but took one: the next command is 2.
+  EXPECT_EQ(server.next_command_id(), 2);
 }
 
 }  // namespace

@@ -19,6 +19,7 @@
 
 #include "fireswarm/common/time.hpp"
 #include "server/fake_fleet.hpp"
+#include "server/server_fixture.hpp"
 
 namespace fireswarm::server {
 namespace {
@@ -220,6 +221,83 @@ TEST(LcmBridge, RefusesAnUnwritableLogNamingIt) {
   config.log_path.reset();
   config.rates.fire_tracks_hz = -1.0;
   EXPECT_THROW(LcmBridge{config}, std::invalid_argument);
+}
+
+struct StatusInbox {
+  void On(const lcm::ReceiveBuffer*, const std::string&, const command_status_t* m) {
+    received.push_back(*m);
+  }
+  std::vector<command_status_t> received;
+};
+
+// command_status_t goes out when a command is accepted and whenever one of its
+// targets changes state (not at a rate), and into the log and the CSV files.
+TEST(LcmBridge, PublishesACommandsStatusWhenItChangesOverMemq) {
+  testing::Fleet fleet;
+  const std::filesystem::path dir = TempDir("status");
+  LcmBridgeConfig config;
+  config.url = "memq://";
+  config.log_path = dir / "run.lcmlog";
+  config.csv_dir = dir / "csv";
+  config.rates = {0.0, 0.0, 0.0, 0.0};  // nothing at a rate
+  std::vector<command_status_t> logged;
+  {
+    LcmBridge bridge(config);
+    ASSERT_NE(bridge.lcm(), nullptr);
+    StatusInbox inbox;
+    bridge.lcm()->subscribe(kCommandStatusChannel, &StatusInbox::On, &inbox);
+    const auto publish = [&] {
+      const double t_s = common::ToSeconds(fleet.air.channel().now());
+      bridge.Publish(fleet.server, t_s, std::llround(t_s * 1e6), 0);
+      while (bridge.lcm()->handleTimeout(0) > 0) {
+      }
+    };
+    publish();  // the start, accepted before the bridge was there
+    ASSERT_EQ(inbox.received.size(), 1U);
+    EXPECT_EQ(inbox.received[0].command, operator_command_t::START);
+    EXPECT_EQ(inbox.received[0].target_states,
+              std::vector<std::int8_t>(3, command_status_t::STATE_ACKNOWLEDGED));
+    inbox.received.clear();
+
+    std::int32_t id = 0;
+    ASSERT_TRUE(fleet.server.Handle({OperatorCommand::Kind::kHold, 2, {}, 0.0, "smoke, \"east\""},
+                                    fleet.air.channel().now(), nullptr, &id));
+    publish();
+    ASSERT_EQ(inbox.received.size(), 1U) << "published when accepted";
+    publish();
+    EXPECT_EQ(inbox.received.size(), 1U) << "unchanged: not again";
+    fleet.air.Run(fleet.server, fleet.air.channel().now() + 10 * kSecond, [&] {
+      publish();
+      const command_status_t& last = inbox.received.back();
+      return last.target_states.at(0) == command_status_t::STATE_ACKNOWLEDGED;
+    });
+    std::vector<int> states;
+    for (const command_status_t& m : inbox.received) {
+      EXPECT_EQ(m.command_id, id);
+      EXPECT_EQ(m.command, operator_command_t::HOLD);
+      ASSERT_EQ(m.target_count, 1);
+      EXPECT_EQ(m.target_ids.at(0), 2);
+      states.push_back(m.target_states.at(0));
+    }
+    EXPECT_EQ(states,
+              (std::vector<int>{command_status_t::STATE_QUEUED, command_status_t::STATE_SENT,
+                                command_status_t::STATE_ACKNOWLEDGED}));
+  }
+  lcm::LogFile log(config.log_path->string(), "r");
+  ASSERT_TRUE(log.good());
+  int in_log = 0;
+  while (const lcm::LogEvent* event = log.readNextEvent()) {
+    in_log += event->channel == kCommandStatusChannel;
+  }
+  EXPECT_EQ(in_log, 4) << "the start's and the hold's three";
+  std::ifstream csv(*config.csv_dir / "fireswarm_command_status.csv");
+  std::string line;
+  std::getline(csv, line);
+  EXPECT_EQ(line, "utime,command_id,command,issued_utime,target_id,target_state,reason");
+  std::vector<std::string> rows;
+  while (std::getline(csv, line)) rows.push_back(line);
+  ASSERT_FALSE(rows.empty());
+  EXPECT_NE(rows.back().find(",2,2,\"smoke, \"\"east\"\"\""), std::string::npos) << rows.back();
 }
 
 // ---- udpm:// on loopback ---------------------------------------------------

@@ -13,6 +13,7 @@
 #include "fireswarm/common/time.hpp"
 #include "fireswarm/server/journal_format.hpp"
 #include "server/fake_fleet.hpp"
+#include "server/server_fixture.hpp"
 
 namespace fireswarm::server {
 namespace {
@@ -20,90 +21,15 @@ namespace {
 using common::Nanos;
 using testing::Air;
 using testing::FakeVehicle;
-
-const common::LocalFrame kFrame{common::LatLon{46.0, -74.5}};
-constexpr Nanos kSecond = std::chrono::seconds(1);
-
-// A searching vehicle at `east_m, north_m` of the frame's origin.
-radio::Telemetry Searching(double east_m, double north_m, std::uint32_t time_ms) {
-  const common::LatLon where = kFrame.ToGeodetic({east_m, north_m});
-  radio::Telemetry telemetry;
-  telemetry.time_ms = time_ms;
-  telemetry.lat_deg = where.lat_deg;
-  telemetry.lon_deg = where.lon_deg;
-  telemetry.altitude_m = 60.0;
-  telemetry.mode = radio::FlightMode::kSearch;
-  telemetry.flags = radio::telemetry_flags::kGpsFix | radio::telemetry_flags::kMissionValid;
-  telemetry.battery_percent = 90;
-  telemetry.mission_id = 1;
-  return telemetry;
-}
-
-radio::FireReport ReportAt(double east_m, double north_m, double observer_east_m,
-                           std::uint32_t time_ms) {
-  const common::LatLon fire = kFrame.ToGeodetic({east_m, north_m});
-  const common::LatLon observer = kFrame.ToGeodetic({observer_east_m, north_m});
-  radio::FireReport report;
-  report.time_ms = time_ms;
-  report.lat_deg = fire.lat_deg;
-  report.lon_deg = fire.lon_deg;
-  report.sigma_north_m = 3.0;
-  report.sigma_east_m = 3.0;
-  report.observer_lat_deg = observer.lat_deg;
-  report.observer_lon_deg = observer.lon_deg;
-  report.observer_altitude_m = 60.0;
-  report.pixel_count = 4;
-  report.peak_temperature_c = 400.0;
-  report.confidence = 0.9;
-  return report;
-}
-
-std::vector<DroneMission> Missions(const std::vector<std::uint8_t>& ids) {
-  std::vector<DroneMission> missions;
-  for (const std::uint8_t id : ids) {
-    DroneMission m;
-    m.vehicle = id;
-    m.mission_id = 1;
-    for (int i = 0; i < 3; ++i) {
-      radio::Waypoint w;
-      const common::LatLon p = kFrame.ToGeodetic({100.0 * i, 50.0 * id});
-      w.lat_deg = p.lat_deg;
-      w.lon_deg = p.lon_deg;
-      w.altitude_m = 60.0;
-      w.speed_mps = 10.0;
-      m.waypoints.push_back(w);
-    }
-    missions.push_back(m);
-  }
-  return missions;
-}
-
-const radio::Command* LastOf(const FakeVehicle& vehicle, radio::CommandType type) {
-  const auto& commands = vehicle.commands();
-  const auto found = std::find_if(commands.rbegin(), commands.rend(),
-                                  [&](const radio::Command& c) { return c.type == type; });
-  return found == commands.rend() ? nullptr : &*found;
-}
-
-// Three vehicles flying a started mission: 1 at the origin, 2 at 300 m east, 3 at
-// 2 km east.
-struct Fleet {
-  explicit Fleet(const ServerConfig& config = {}) : air(0.0), server(config, kFrame) {
-    for (std::uint8_t id = 1; id <= 3; ++id) {
-      air.Add(id);
-      server.AddVehicle(id);
-    }
-    server.LoadMission(Missions({1, 2, 3}));
-    air.vehicle(1).endpoint().SetTelemetry(Searching(0, 0, 1'000));
-    air.vehicle(2).endpoint().SetTelemetry(Searching(300, 0, 1'000));
-    air.vehicle(3).endpoint().SetTelemetry(Searching(2'000, 0, 1'000));
-    EXPECT_TRUE(server.Handle({OperatorCommand::Kind::kStart, 0, {}, 0.0, "test"}, Nanos{0}));
-    air.Run(server, 60 * kSecond, [&] { return server.state() == MissionState::kRunning; });
-  }
-  void RunFor(Nanos duration) { air.RunUntil(server, air.channel().now() + duration); }
-  Air air;
-  Server server;
-};
+using testing::Fleet;
+using testing::kFrame;
+using testing::kSecond;
+using testing::LaneMissions;
+using testing::LastOf;
+using testing::Missions;
+using testing::ReportAt;
+using testing::Searching;
+using testing::StartLaneMission;
 
 TEST(Server, UploadsStartsAndRunsTheMission) {
   Fleet fleet;
@@ -344,44 +270,6 @@ TEST(Server, RestoredFromItsJournalKeepsTracksAndPhasesAndUploadsNothingAgain) {
   EXPECT_GT(gap, 30'000);
   EXPECT_LT(gap, 35'536);
   EXPECT_EQ(restored.registry().ids(), fleet.server.registry().ids());
-}
-
-// Lanes 200 m apart, 1 km north, one per waypoint pair, lane starts flagged.
-std::vector<DroneMission> LaneMissions(const std::vector<std::uint8_t>& ids, int lanes_each) {
-  std::vector<DroneMission> missions;
-  int lane = 0;
-  for (const std::uint8_t id : ids) {
-    DroneMission m;
-    m.vehicle = id;
-    m.mission_id = 1;
-    for (int i = 0; i < lanes_each; ++i, ++lane) {
-      for (const double north : {0.0, 1000.0}) {
-        const common::LatLon p = kFrame.ToGeodetic({200.0 * lane, north});
-        radio::Waypoint w;
-        w.lat_deg = p.lat_deg;
-        w.lon_deg = p.lon_deg;
-        w.altitude_m = 60.0 + id;
-        w.speed_mps = 10.0;
-        w.flags = north == 0.0 ? 1 : 0;
-        m.waypoints.push_back(w);
-      }
-    }
-    missions.push_back(m);
-  }
-  return missions;
-}
-
-// Vehicles 1..3 searching at 0, 400 and 800 m east fly LaneMissions({1, 2, 3}, 2),
-// started and running.
-void StartLaneMission(Air& air, Server& server) {
-  for (std::uint8_t id = 1; id <= 3; ++id) {
-    air.Add(id);
-    server.AddVehicle(id);
-    air.vehicle(id).endpoint().SetTelemetry(Searching(400.0 * (id - 1), 0, 1'000));
-  }
-  server.LoadMission(LaneMissions({1, 2, 3}, 2));
-  ASSERT_TRUE(server.Handle({OperatorCommand::Kind::kStart, 0, {}, 0.0, "test"}, Nanos{0}));
-  air.Run(server, 60 * kSecond, [&] { return server.state() == MissionState::kRunning; });
 }
 
 TEST(Server, ADroneGivenUpAsLostIsSentHomeWhenHeardAgain) {

@@ -97,14 +97,23 @@ struct RequestFinished {
   Nanos finished{0};
 };
 
+/// A request's frame went out: it is in the burst the Step() that produced this
+/// event returned (the first send, or a resend with the same sequence number).
+struct RequestSent {
+  RequestId id = 0;
+  std::uint8_t vehicle = 0;
+  int attempt = 0;  ///< 0: the first send; n: the nth resend
+  Nanos sent{0};    ///< start of the burst that carries it
+};
+
 /// A vehicle missed silent_after_missed_replies replies in a row (once per silence).
 struct VehicleSilent {
   std::uint8_t vehicle = 0;
   Nanos last_heard{0};  ///< -1 ns when never heard
 };
 
-using SchedulerEvent =
-    std::variant<TelemetryReceived, FireReportReceived, RequestFinished, VehicleSilent>;
+using SchedulerEvent = std::variant<TelemetryReceived, FireReportReceived, RequestSent,
+                                    RequestFinished, VehicleSilent>;
 
 struct SchedulerStats {
   std::uint64_t bursts = 0;
@@ -152,6 +161,9 @@ class MasterScheduler {
   void AddVehicle(std::uint8_t vehicle, double telemetry_hz = 0.0, Nanos first_due = Nanos{0});
   /// Changes a vehicle's telemetry rate (Hz > 0). Throws std::invalid_argument.
   void SetTelemetryRate(std::uint8_t vehicle, double telemetry_hz);
+  /// The rate a vehicle is polled for telemetry at, Hz. Throws std::invalid_argument
+  /// for an unknown vehicle.
+  double TelemetryRateHz(std::uint8_t vehicle) const;
 
   /// Queue a request for `vehicle`; the scheduler sets the header. Requests to one
   /// vehicle go one at a time, in order. Throws std::invalid_argument for an unknown

@@ -122,6 +122,10 @@ class Investigations {
   /// `track_id` was confirmed at `now_s`: its investigations still running end
   /// now. Returns their vehicles, in order, to be sent back to their lanes.
   std::vector<std::uint8_t> EndForConfirmed(std::int32_t track_id, double now_s);
+  /// The operator took `vehicle` off its work at `now_s` (a hold, resume, return or
+  /// land): its investigations still running end now and judge nothing, so their
+  /// tracks stay tentative (it did not look for as long as it was sent to).
+  void CallOff(std::uint8_t vehicle, double now_s);
   /// Draws the verdicts due by `now`: tentative tracks not seen again by an
   /// investigator that got near are rejected in `fusion`; returns them in order.
   std::vector<Rejection> Judge(common::Nanos now, FireFusion& fusion);

@@ -30,14 +30,18 @@ struct MissionLoaded {
   std::vector<DroneMission> drones;
 };
 
-/// An operator command was carried out (start, abort, return all, or an
-/// investigation order). The radius is not journaled: the investigation that
-/// follows an order carries what the vehicle was told.
+/// An operator command was carried out (start, abort, return all, an
+/// investigation order, a per-drone or fleet hold, resume, return or land). The
+/// radius is not journaled: the investigation that follows an order carries what
+/// the vehicle was told.
 struct CommandAccepted {
   OperatorCommand::Kind command = OperatorCommand::Kind::kStart;
   std::uint8_t vehicle = 0;
   common::LatLon point;
   std::string reason;
+  /// The command's ID (command_status.hpp); 0: not known (journals written before
+  /// commands had IDs).
+  std::int32_t command_id = 0;
 };
 
 /// A drone's phase changed.

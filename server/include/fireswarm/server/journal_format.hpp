@@ -7,8 +7,11 @@
 // holds "radio_seq", the radio's next sequence number:
 //   vehicle            {"id"}
 //   mission            {"drones": [{"vehicle", "mission_id", "waypoints"}]}
-//   start, abort, return_all, investigate_order
-//                      {"command", "vehicle", "lat_deg", "lon_deg", "reason"}
+//   start, abort, return_all, investigate_order (investigate and retask), hold,
+//   resume, return, land, hold_all, resume_all
+//                      {"command", "vehicle", "lat_deg", "lon_deg", "reason",
+//                       ["command_id"]}  (OperatorCommand::Kind's value; the ID
+//                       from 1, absent in journals written before commands had IDs)
 //   phase              {"vehicle", "phase"}            (DronePhase's value)
 //   handover           {"lost", "why", "drones", ["straight_joins"]}
 //   state              {"state"}                       (MissionState's value)

@@ -1,5 +1,6 @@
 // The LCM side of the server: what it publishes (vehicle_state_t, fire tracks,
-// mission_status_t, radio_stats_t, each at its own rate), what it accepts
+// mission_status_t, radio_stats_t, each at its own rate; command_status_t when a
+// command is accepted or one of its targets changes state), what it accepts
 // (operator_command_t), the LCM log it writes for the stock `lcm-logplayer`, and
 // the per-message CSV files (the seed's ground station logged its telemetry to CSV
 // at fixed rates, 3.6).
@@ -21,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "fireswarm/command_status_t.hpp"
 #include "fireswarm/fire_track_list_t.hpp"
 #include "fireswarm/mission_status_t.hpp"
 #include "fireswarm/operator_command_t.hpp"
@@ -42,6 +44,7 @@ inline constexpr const char* kFireTracksChannel = "FIRESWARM_FIRE_TRACKS";
 inline constexpr const char* kMissionStatusChannel = "FIRESWARM_MISSION_STATUS";
 inline constexpr const char* kRadioStatsChannel = "FIRESWARM_RADIO_STATS";
 inline constexpr const char* kOperatorCommandChannel = "FIRESWARM_OPERATOR_COMMAND";
+inline constexpr const char* kCommandStatusChannel = "FIRESWARM_COMMAND_STATUS";
 
 /// Publication rates, Hz (0 = not published).
 struct LcmRates {
@@ -74,6 +77,10 @@ struct RadioCounters {
 /// last `window_s`, from the difference with `previous`, which is then updated.
 radio_stats_t ToRadioStats(const Server& server, double now_s, std::int64_t utime, double window_s,
                            RadioCounters& previous);
+/// One command's record (Server::commands()) stamped `utime`; its issue time
+/// converted with utime = `utime_at_zero` + seconds * 1e6.
+command_status_t ToCommandStatus(const CommandRecord& record, std::int64_t utime,
+                                 std::int64_t utime_at_zero);
 /// An operator's command as the server takes it; nullopt (with the reason in
 /// `why`) when the command constant is unknown or a field is out of range.
 std::optional<OperatorCommand> FromLcm(const operator_command_t& message, std::string* why);
@@ -99,13 +106,18 @@ class LcmBridge {
   LcmBridge& operator=(const LcmBridge&) = delete;
 
   /// Publishes (and logs, and writes to CSV) every message type whose period has
-  /// come round at `now_s` (mission seconds); `utime` stamps them.
+  /// come round at `now_s` (mission seconds), and a command_status_t for every
+  /// command accepted or changed since the last call; `utime` stamps them.
   void Publish(const Server& server, double now_s, std::int64_t utime, std::int64_t utime_at_zero);
   /// Operator commands received since the last call (handles pending LCM
   /// traffic without blocking). Malformed ones are dropped and counted.
   std::vector<OperatorCommand> TakeCommands();
   /// When Publish next has something to publish, mission seconds.
   double NextPublishS() const;
+
+  /// The bridge's LCM instance (null without a URL): in-process listeners
+  /// subscribe here, as memq:// delivers only within the instance that publishes.
+  lcm::LCM* lcm() { return lcm_.get(); }
 
   std::uint64_t published() const { return published_; }
   std::uint64_t rejected_commands() const { return rejected_commands_; }
@@ -124,6 +136,7 @@ class LcmBridge {
   RadioCounters previous_counters_;
   double previous_radio_stats_s_ = 0.0;
   std::vector<OperatorCommand> commands_;
+  std::uint64_t commands_version_ = 0;  // Server::commands_version() last published
   std::uint64_t published_ = 0;
   std::uint64_t rejected_commands_ = 0;
 };

@@ -123,6 +123,13 @@ class MissionManager {
   bool AllStarted() const;
   /// Fraction of all drones' waypoints passed, [0, 1] (done drones count whole).
   double WaypointFraction() const;
+  /// Fraction of one drone's waypoints passed (of the mission it flies now), [0, 1];
+  /// 1 when done, 0 for a mission without waypoints. Throws std::out_of_range for
+  /// a vehicle without a mission.
+  double WaypointFraction(std::uint8_t vehicle) const;
+  /// True while `request` is one of the manager's (a chunk or a start) that has
+  /// not finished.
+  bool Owns(radio::RequestId request) const { return pending_.contains(request); }
 
  private:
   struct Drone {

@@ -14,6 +14,24 @@
 // A lost drone: when a flying drone has not been heard for the registry's lost
 // time, its remaining lanes go to the drones still searching (server_handover.cpp).
 //
+// Operator commands to drones (hold, resume, return, land; one drone or the
+// fleet) go to the vehicles as radio commands; the vehicle decides (agents/: a
+// drone on the ground refuses a hold, resume goes back to what the hold
+// interrupted). The mission's state does not change with them: a holding drone
+// is still on its mission (it neither searches nor heads home, so the mission
+// stays running), and a drone told to return or land counts as heading home as
+// any other. An investigation the command interrupts ends without a verdict.
+//
+// Command status (command_status.hpp): every accepted command gets an ID and a
+// record of its targets. Targets: the vehicle named or chosen (per-drone orders,
+// investigations), every registered vehicle (fleet orders), the mission's
+// vehicles (start). A start's target is queued until the first frame of the
+// drone's upload goes out (sent), acknowledged once the drone accepted its start
+// (DronePhase kFlying or kDone) and failed when the drone failed (upload refused
+// or unanswered; `failure` is the detail); refused starts are asked again, so
+// they stay sent. Other targets follow the radio request carrying the command.
+// Restored servers keep counting IDs after the journal's last one.
+//
 // No-fly zones (ServerConfig::no_fly): the legs the server makes up keep out of
 // them as the planner's do. A taker's joins to the lanes it is handed go around
 // them (planner::TransitPlanner), and investigations keep out of them too.
@@ -33,6 +51,7 @@
 #include "fireswarm/planner/geometry.hpp"
 #include "fireswarm/planner/transit.hpp"
 #include "fireswarm/radio/master_scheduler.hpp"
+#include "fireswarm/server/command_status.hpp"
 #include "fireswarm/server/fire_fusion.hpp"
 #include "fireswarm/server/handover.hpp"
 #include "fireswarm/server/investigations.hpp"
@@ -94,8 +113,11 @@ class Server {
 
   /// Carries out an operator's command at `now`. Returns false (and journals
   /// nothing) when it cannot be done now, with the reason in `why` if given:
-  /// start without a mission or twice, an unknown vehicle, an invalid point.
-  bool Handle(const OperatorCommand& command, common::Nanos now, std::string* why = nullptr);
+  /// start without a mission or twice, a missing or unknown vehicle, an invalid
+  /// point, a fleet order without vehicles. When accepted, `command_id` (if given)
+  /// receives the ID of its record in commands().
+  bool Handle(const OperatorCommand& command, common::Nanos now, std::string* why = nullptr,
+              std::int32_t* command_id = nullptr);
 
   /// Feeds the bytes received up to `now` and returns what to transmit.
   std::vector<radio::Burst> Step(common::Nanos now, std::span<const std::uint8_t> received);
@@ -127,6 +149,16 @@ class Server {
     return report_receipts_;
   }
   double mission_started_s() const { return mission_started_s_; }
+  /// Every command accepted since this server started, in order (IDs ascending).
+  const std::vector<CommandRecord>& commands() const { return commands_.records(); }
+  /// Rises whenever a record in commands() is added or changes; a record's
+  /// `version` is this value when it last changed.
+  std::uint64_t commands_version() const { return commands_.version(); }
+  /// The ID the next accepted command gets.
+  std::int32_t next_command_id() const { return commands_.next_id(); }
+  /// Drones given up as lost whose lanes went to others -> true once heard again
+  /// (and ordered home).
+  const std::map<std::uint8_t, bool>& handed_over() const { return handed_over_; }
   /// Bytes the server has transmitted (all bursts) and received, since it started.
   std::uint64_t bytes_sent() const { return bytes_sent_; }
   std::uint64_t bytes_received() const { return bytes_received_; }
@@ -136,9 +168,15 @@ class Server {
   void OnFireReport(const radio::FireReportReceived& received, double now_s);
   void AfterFusion(const FireObservation& observation, const FireReportResult& result,
                    double now_s);
-  void Investigate(std::uint8_t vehicle, common::LatLon point, double radius_m,
-                   std::int32_t track_id, double now_s);
-  void SendToAll(radio::CommandType type);
+  radio::RequestId Investigate(std::uint8_t vehicle, common::LatLon point, double radius_m,
+                               std::int32_t track_id, double now_s);
+  void SendToAll(radio::CommandType type, std::int32_t command_id);
+  std::optional<std::string> HandleDroneOrder(const OperatorCommand& command, double now_s,
+                                              std::int32_t* command_id);
+  std::optional<std::string> HandleInvestigation(const OperatorCommand& command, double now_s,
+                                                 std::int32_t* command_id);
+  void CallOff(const CommandAccepted& command, double now_s);
+  void UpdateStartCommand(const radio::SchedulerEvent& event);
   void HandOverLostDrones(double now_s);
   void HandOver(std::uint8_t lost, double now_s);
   void RecallHandedOverDrones(double now_s);
@@ -164,6 +202,8 @@ class Server {
   std::map<std::pair<std::uint8_t, std::uint16_t>, double> report_receipts_;
   std::map<std::uint8_t, double> clock_offset_s_;  // mission time - vehicle clock, per vehicle
   std::map<std::uint8_t, DronePhase> journaled_phases_;
+  CommandLog commands_;
+  std::int32_t start_command_id_ = 0;  // the start's record, 0: none this life
   std::vector<JournalEntry> journal_;
   bool restoring_ = false;
   std::uint64_t bytes_sent_ = 0;

@@ -1,0 +1,247 @@
+// The server's operator commands over a real simulated channel to fake vehicles:
+// each reaches its vehicles, and its record follows each target from queued to
+// sent to acknowledged or failed.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <map>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "fireswarm/server/server.hpp"
+#include "server/fake_fleet.hpp"
+#include "server/server_fixture.hpp"
+
+namespace fireswarm::server {
+namespace {
+
+using common::Nanos;
+using testing::Air;
+using testing::Fleet;
+using testing::kFrame;
+using testing::kSecond;
+using testing::LastOf;
+using testing::Missions;
+using testing::Searching;
+using Kind = OperatorCommand::Kind;
+
+const CommandRecord& RecordOf(const Server& server, std::int32_t id) {
+  const auto& all = server.commands();
+  const auto found =
+      std::find_if(all.begin(), all.end(), [&](const CommandRecord& r) { return r.id == id; });
+  if (found == all.end()) throw std::out_of_range("no command " + std::to_string(id));
+  return *found;
+}
+
+const CommandTarget& TargetOf(const Server& server, std::int32_t id, std::uint8_t vehicle) {
+  for (const CommandTarget& target : RecordOf(server, id).targets) {
+    if (target.vehicle == vehicle) return target;
+  }
+  throw std::out_of_range("command " + std::to_string(id) + " has no target " +
+                          std::to_string(vehicle));
+}
+
+bool Finished(TargetState state) {
+  return state == TargetState::kAcknowledged || state == TargetState::kFailed;
+}
+
+using StateLog = std::map<std::uint8_t, std::vector<TargetState>>;
+
+// Runs the air until every target of command `id` is acknowledged or failed (or
+// `limit` of simulated time passed) and returns the states each went through.
+StateLog WatchUntilFinished(Air& air, Server& server, std::int32_t id, Nanos limit = 30 * kSecond) {
+  StateLog seen;
+  const auto look = [&] {
+    bool all_finished = true;
+    for (const CommandTarget& target : RecordOf(server, id).targets) {
+      std::vector<TargetState>& states = seen[target.vehicle];
+      if (states.empty() || states.back() != target.state) states.push_back(target.state);
+      all_finished = all_finished && Finished(target.state);
+    }
+    return all_finished;
+  };
+  look();
+  air.Run(server, air.channel().now() + limit, look);
+  return seen;
+}
+
+Nanos Now(const Fleet& fleet) {
+  return fleet.air.channel().now();
+}
+
+const std::vector<TargetState> kDelivered{TargetState::kQueued, TargetState::kSent,
+                                          TargetState::kAcknowledged};
+const std::vector<TargetState> kUndelivered{TargetState::kQueued, TargetState::kSent,
+                                            TargetState::kFailed};
+
+TEST(Server, EachDroneCommandReachesItsVehicleQueuedSentAcknowledged) {
+  Fleet fleet;
+  const std::pair<Kind, radio::CommandType> orders[] = {
+      {Kind::kHold, radio::CommandType::kHold},
+      {Kind::kResume, radio::CommandType::kResume},
+      {Kind::kReturnVehicle, radio::CommandType::kReturnToLaunch},
+      {Kind::kLand, radio::CommandType::kLand}};
+  std::int32_t expected_id = 2;  // the start was 1
+  for (const auto& [kind, radio_type] : orders) {
+    std::int32_t id = -1;
+    std::string why;
+    ASSERT_TRUE(fleet.server.Handle({kind, 2, {}, 0.0, "smoke"}, Now(fleet), &why, &id)) << why;
+    EXPECT_EQ(id, expected_id++);
+    const CommandRecord& record = RecordOf(fleet.server, id);
+    EXPECT_EQ(record.kind, kind);
+    EXPECT_EQ(record.reason, "smoke");
+    EXPECT_DOUBLE_EQ(record.issued_s, common::ToSeconds(Now(fleet)));
+    ASSERT_EQ(record.targets.size(), 1U);
+    EXPECT_EQ(record.targets[0].vehicle, 2);
+
+    const StateLog seen = WatchUntilFinished(fleet.air, fleet.server, id);
+    EXPECT_EQ(seen.at(2), kDelivered) << ToString(kind);
+    EXPECT_EQ(RecordOf(fleet.server, id).Summary(), TargetState::kAcknowledged);
+    EXPECT_NE(LastOf(fleet.air.vehicle(2), radio_type), nullptr) << ToString(kind);
+    EXPECT_EQ(LastOf(fleet.air.vehicle(1), radio_type), nullptr) << ToString(kind);
+  }
+}
+
+// A holding drone neither searches nor heads home: the mission goes on.
+TEST(Server, HoldAllReachesEveryVehicleAndTheMissionKeepsRunning) {
+  Fleet fleet;
+  std::int32_t id = 0;
+  ASSERT_TRUE(fleet.server.Handle({Kind::kHoldAll, 0, {}, 0.0, ""}, Now(fleet), nullptr, &id));
+  const StateLog seen = WatchUntilFinished(fleet.air, fleet.server, id);
+  ASSERT_EQ(seen.size(), 3U);
+  for (std::uint8_t vehicle = 1; vehicle <= 3; ++vehicle) {
+    EXPECT_EQ(seen.at(vehicle), kDelivered) << int{vehicle};
+    EXPECT_NE(LastOf(fleet.air.vehicle(vehicle), radio::CommandType::kHold), nullptr);
+    radio::Telemetry holding = Searching(100.0 * vehicle, 0, 20'000);
+    holding.mode = radio::FlightMode::kHold;
+    fleet.air.vehicle(vehicle).endpoint().SetTelemetry(holding);
+  }
+  fleet.RunFor(10 * kSecond);
+  EXPECT_EQ(fleet.server.state(), MissionState::kRunning);
+
+  ASSERT_TRUE(fleet.server.Handle({Kind::kResumeAll, 0, {}, 0.0, ""}, Now(fleet), nullptr, &id));
+  for (const auto& [vehicle, states] : WatchUntilFinished(fleet.air, fleet.server, id)) {
+    EXPECT_EQ(states, kDelivered) << int{vehicle};
+    EXPECT_NE(LastOf(fleet.air.vehicle(vehicle), radio::CommandType::kResume), nullptr);
+  }
+}
+
+TEST(Server, ACommandToASilentVehicleEndsFailed) {
+  Fleet fleet;
+  fleet.air.silent.insert(3);
+  std::int32_t id = 0;
+  ASSERT_TRUE(
+      fleet.server.Handle({Kind::kReturnVehicle, 3, {}, 0.0, ""}, Now(fleet), nullptr, &id));
+  const StateLog seen = WatchUntilFinished(fleet.air, fleet.server, id);
+  EXPECT_EQ(seen.at(3), kUndelivered);
+  EXPECT_EQ(TargetOf(fleet.server, id, 3).detail, "no acknowledgement after 3 resends");
+  EXPECT_EQ(RecordOf(fleet.server, id).Summary(), TargetState::kFailed);
+}
+
+TEST(Server, ACommandTheVehicleRefusesEndsFailedWithItsAnswer) {
+  Fleet fleet;
+  fleet.air.vehicle(2).refused.insert(radio::CommandType::kLand);
+  std::int32_t id = 0;
+  ASSERT_TRUE(fleet.server.Handle({Kind::kLand, 2, {}, 0.0, ""}, Now(fleet), nullptr, &id));
+  EXPECT_EQ(WatchUntilFinished(fleet.air, fleet.server, id).at(2), kUndelivered);
+  EXPECT_EQ(TargetOf(fleet.server, id, 2).detail, "refused by the vehicle: rejected");
+}
+
+TEST(Server, DroneAndFleetCommandsWithoutTheirVehiclesAreRefusedWithAReason) {
+  Server server(ServerConfig{}, kFrame);
+  std::string why;
+  std::int32_t id = -1;
+  EXPECT_FALSE(server.Handle({Kind::kHoldAll, 0, {}, 0.0, ""}, Nanos{0}, &why, &id));
+  EXPECT_EQ(why, "hold_all: no vehicle is registered");
+  EXPECT_FALSE(server.Handle({Kind::kResumeAll, 0, {}, 0.0, ""}, Nanos{0}, &why, &id));
+  EXPECT_EQ(why, "resume_all: no vehicle is registered");
+  server.AddVehicle(1);
+  const std::pair<Kind, const char*> needs_vehicle[] = {
+      {Kind::kHold, "hold needs a vehicle"},
+      {Kind::kResume, "resume needs a vehicle"},
+      {Kind::kReturnVehicle, "return needs a vehicle"},
+      {Kind::kLand, "land needs a vehicle"}};
+  for (const auto& [kind, reason] : needs_vehicle) {
+    EXPECT_FALSE(server.Handle({kind, 0, {}, 0.0, ""}, Nanos{0}, &why, &id));
+    EXPECT_EQ(why, reason);
+    EXPECT_FALSE(server.Handle({kind, 9, {}, 0.0, ""}, Nanos{0}, &why, &id));
+    EXPECT_EQ(why, "vehicle 9 is not registered");
+  }
+  EXPECT_EQ(id, -1) << "a refused command has no ID";
+  EXPECT_TRUE(server.commands().empty());
+  EXPECT_EQ(server.next_command_id(), 1);
+  for (const JournalEntry& entry : server.TakeJournalEntries()) {
+    EXPECT_FALSE(std::holds_alternative<CommandAccepted>(entry.event))
+        << "refusals are not journaled";
+  }
+}
+
+// A start's targets follow their drone's upload and start: the one that answers
+// is acknowledged once it accepted the start, the silent one fails with why.
+TEST(Server, AStartFollowsEachDronesUploadAndStart) {
+  Air air(0.0);
+  Server server(ServerConfig{}, kFrame);
+  for (std::uint8_t id = 1; id <= 2; ++id) {
+    air.Add(id);
+    server.AddVehicle(id);
+  }
+  air.silent.insert(2);
+  server.LoadMission(Missions({1, 2}));
+  std::int32_t id = 0;
+  ASSERT_TRUE(server.Handle({Kind::kStart, 0, {}, 0.0, "go"}, Nanos{0}, nullptr, &id));
+  EXPECT_EQ(id, 1);
+  const StateLog seen = WatchUntilFinished(air, server, id, 120 * kSecond);
+  EXPECT_EQ(seen.at(1), kDelivered);
+  EXPECT_EQ(seen.at(2), kUndelivered);
+  EXPECT_EQ(TargetOf(server, id, 2).detail, server.mission()->progress(2).failure);
+  EXPECT_NE(TargetOf(server, id, 2).detail.find("unanswered"), std::string::npos);
+  EXPECT_EQ(air.vehicle(1).starts_accepted(), 1);
+}
+
+// The operator's hold interrupts an investigation: it ends at once and judges
+// nothing (the track would otherwise be rejected for not being seen again).
+TEST(Server, AHoldTakesTheDroneOffItsInvestigationWithoutAVerdict) {
+  Fleet fleet;
+  const common::LatLon point = kFrame.ToGeodetic({50.0, 50.0});
+  ASSERT_TRUE(fleet.server.Handle({Kind::kRetaskVehicle, 1, point, 0.0, ""}, Now(fleet)));
+  ASSERT_EQ(fleet.server.investigations().size(), 1U);
+  EXPECT_GT(fleet.server.investigations()[0].until_s, common::ToSeconds(Now(fleet)) + 30.0);
+  fleet.RunFor(2 * kSecond);
+  ASSERT_TRUE(fleet.server.Handle({Kind::kHold, 1, {}, 0.0, ""}, Now(fleet)));
+  const Investigation& called_off = fleet.server.investigations()[0];
+  EXPECT_DOUBLE_EQ(called_off.until_s, common::ToSeconds(Now(fleet)));
+  EXPECT_TRUE(called_off.judged);
+}
+
+// Command IDs are unique for the server's life, a restart from its journal
+// included; the restored server calls off the same investigations.
+TEST(Server, ARestoredServerGivesNoCommandIdTwice) {
+  Fleet fleet;  // the start: command 1
+  const common::LatLon point = kFrame.ToGeodetic({50.0, 50.0});
+  std::int32_t id = 0;
+  ASSERT_TRUE(fleet.server.Handle({Kind::kRetaskVehicle, 1, point, 0.0, ""}, Now(fleet)));
+  ASSERT_TRUE(fleet.server.Handle({Kind::kHold, 1, {}, 0.0, ""}, Now(fleet), nullptr, &id));
+  ASSERT_TRUE(fleet.server.Handle({Kind::kResumeAll, 0, {}, 0.0, ""}, Now(fleet), nullptr, &id));
+  EXPECT_EQ(id, 4);
+  std::vector<std::int32_t> journaled_ids;
+  const std::vector<JournalEntry> journal = fleet.server.TakeJournalEntries();
+  for (const JournalEntry& entry : journal) {
+    if (const auto* c = std::get_if<CommandAccepted>(&entry.event)) {
+      journaled_ids.push_back(c->command_id);
+    }
+  }
+  EXPECT_EQ(journaled_ids, (std::vector<std::int32_t>{1, 2, 3, 4}));
+
+  Server restored = Server::Restore(ServerConfig{}, kFrame, journal);
+  EXPECT_EQ(restored.next_command_id(), 5);
+  EXPECT_TRUE(restored.commands().empty()) << "records are of this server's life";
+  ASSERT_EQ(restored.investigations().size(), 1U);
+  EXPECT_TRUE(restored.investigations()[0].judged);
+  ASSERT_TRUE(restored.Handle({Kind::kLand, 2, {}, 0.0, ""}, Now(fleet), nullptr, &id));
+  EXPECT_EQ(id, 5);
+}
+
+}  // namespace
+}  // namespace fireswarm::server
