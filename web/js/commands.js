@@ -103,6 +103,7 @@ export class Commands {
         return li;
       }),
     );
+    document.getElementById('confirm-reason').value = 'operator';
     this.dialog_.returnValue = '';
     this.dialog_.dataset.kind = kind;
     this.dialog_.onclose = () => {

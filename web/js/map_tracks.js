@@ -31,7 +31,7 @@ export class TrackLayer {
       const colour = STATUS_COLOUR[track.status] || '#000';
       const e = track.ellipse || { semi_major_m: 0, semi_minor_m: 0, bearing_deg: 0 };
       const outline = ellipse(track.position, e.semi_major_m, e.semi_minor_m, e.bearing_deg);
-      const style = { color: colour, weight: 2, fillColor: colour, fillOpacity: 0.2, pane: 'tracks' };
+      const style = { color: colour, weight: 2, fillColor: colour, fillOpacity: 0.2, pane: 'tracks', smoothFactor: 0 };
       if (!t) {
         const shape = L.polygon(outline, style).addTo(this.map_);
         const centre = L.circleMarker(track.position, { radius: 4, color: colour, fillOpacity: 1, pane: 'tracks' }).addTo(this.map_);
