@@ -59,7 +59,7 @@ export class CoverageLayer {
     const reply = await fetch('/api/coverage');
     if (!reply.ok) return;
     const raster = await reply.json();
-    if (!raster.rows || !raster.cols || !raster.corners) return;
+    if (!raster || !raster.rows || !raster.cols || !raster.corners) return; // no plan yet
     const bounds = L.latLngBounds(raster.corners);
     const url = rasterUrl(raster);
     if (!this.overlay_) {

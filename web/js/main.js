@@ -1,7 +1,7 @@
 // The command-center page: one store fed by the stream, and the views it drives.
 import { Store } from './store.js';
 import { FleetTable } from './fleet_table.js';
-import { createMap, loadPlan } from './map.js';
+import { PlanLayer, createMap } from './map.js';
 import { FleetLayer } from './map_fleet.js';
 import { TrackLayer } from './map_tracks.js';
 import { CoverageLayer } from './coverage.js';
@@ -22,6 +22,7 @@ select = (id) => {
   fleet.select(id);
   commands.select(id);
 };
+const plan = new PlanLayer(map, (id) => store.vehicles.get(id)?.colour || '#555');
 const tracks = new TrackLayer(map);
 const coverage = new CoverageLayer(map);
 const alerts = new AlertList(document.getElementById('alerts'));
@@ -42,9 +43,10 @@ function header(s) {
   mission.dataset.state = m ? m.state : '';
 }
 
-let planLoaded = false;
+let coverageStarted = false;
 store.subscribe((s) => {
   header(s);
+  plan.render(s);
   table.render(s);
   fleet.render(s);
   tracks.render(s);
@@ -52,11 +54,8 @@ store.subscribe((s) => {
   radio.render(s);
   commands.render(s);
   timeline.render(s);
-  if (!planLoaded && s.hasState) {
-    planLoaded = true;
-    loadPlan(map, (id) => s.vehicles.get(id)?.colour || '#555')
-      .then(() => document.body.classList.add('plan-loaded'))
-      .catch((e) => console.error('fireswarm: plan', e));
+  if (!coverageStarted && s.hasState) {
+    coverageStarted = true;
     coverage.start();
   }
 });

@@ -37,25 +37,57 @@ async function addTilesIfServed(map) {
   document.body.classList.add('has-tiles');
 }
 
-/** Draws the plan's GeoJSON and fits the map to the area (once). */
-export async function loadPlan(map, colourOf) {
-  const reply = await fetch('/api/plan');
-  if (!reply.ok) throw new Error(`GET /api/plan: ${reply.status}`);
-  const plan = await reply.json();
-  const features = plan.features || [];
-  const byKind = (kind) => ({ type: 'FeatureCollection', features: features.filter((f) => f.properties && f.properties.kind === kind) });
-  const area = L.geoJSON(byKind('area'), { style: PLAN_STYLE.area, interactive: false }).addTo(map);
-  L.geoJSON(byKind('no_fly'), { style: PLAN_STYLE.no_fly, interactive: false }).addTo(map);
-  const lanes = L.geoJSON(byKind('lanes'), {
-    pane: 'lanes',
-    interactive: false,
-    style: (f) => ({ color: colourOf(f.properties.vehicle), weight: 1.5, opacity: 0.55 }),
-  }).addTo(map);
-  L.geoJSON(byKind('launch'), {
-    pointToLayer: (f, latlng) => L.circleMarker(latlng, { radius: 6, color: '#000', weight: 2, fillColor: '#fff', fillOpacity: 1 }),
-  }).bindTooltip('launch').addTo(map);
-  const bounds = area.getBounds();
-  if (bounds.isValid()) map.fitBounds(bounds, { padding: [12, 12] });
-  else if (lanes.getBounds().isValid()) map.fitBounds(lanes.getBounds());
-  return { lanes, count: features.length };
+/**
+ * The plan's layers (GET /api/plan): drawn on the first state, drawn again when
+ * the state's `plan` changes (a new plan, lanes handed over), fitted to the area
+ * the first time only.
+ */
+export class PlanLayer {
+  constructor(map, colourOf) {
+    this.map_ = map;
+    this.colourOf_ = colourOf;
+    this.group_ = L.layerGroup().addTo(map);
+    this.key_ = null;
+    this.fitted_ = false;
+    this.loading_ = false;
+  }
+
+  render(store) {
+    if (!store.hasState) return;
+    const key = JSON.stringify(store.plan ?? null);
+    if (key === this.key_ || this.loading_) return;
+    this.loading_ = true;
+    this.load_()
+      .then(() => {
+        this.key_ = key;
+        document.body.classList.add('plan-loaded');
+      })
+      .catch((e) => console.error('fireswarm: plan', e.message))
+      .finally(() => (this.loading_ = false));
+  }
+
+  async load_() {
+    const reply = await fetch('/api/plan');
+    if (!reply.ok) throw new Error(`GET /api/plan: ${reply.status}`);
+    const plan = await reply.json();
+    const features = (plan && plan.features) || [];
+    const byKind = (kind) => ({ type: 'FeatureCollection', features: features.filter((f) => f.properties && f.properties.kind === kind) });
+    this.group_.clearLayers();
+    const area = L.geoJSON(byKind('area'), { style: PLAN_STYLE.area, interactive: false }).addTo(this.group_);
+    L.geoJSON(byKind('no_fly'), { style: PLAN_STYLE.no_fly, interactive: false }).addTo(this.group_);
+    const lanes = L.geoJSON(byKind('lanes'), {
+      pane: 'lanes',
+      interactive: false,
+      style: (f) => ({ color: this.colourOf_(f.properties.vehicle), weight: 1.5, opacity: 0.55 }),
+    }).addTo(this.group_);
+    L.geoJSON(byKind('launch'), {
+      pointToLayer: (f, latlng) => L.circleMarker(latlng, { radius: 6, color: '#000', weight: 2, fillColor: '#fff', fillOpacity: 1 }),
+    }).bindTooltip('launch').addTo(this.group_);
+    if (this.fitted_) return;
+    const bounds = area.getBounds().isValid() ? area.getBounds() : lanes.getBounds();
+    if (bounds.isValid()) {
+      this.map_.fitBounds(bounds, { padding: [12, 12] });
+      this.fitted_ = true;
+    }
+  }
 }

@@ -23,6 +23,12 @@ export class TrackLayer {
   }
 
   render(store) {
+    for (const [id, t] of this.tracks_) {
+      if (store.tracks.has(id)) continue;
+      t.shape.remove();
+      t.centre.remove();
+      this.tracks_.delete(id);
+    }
     for (const track of store.tracks.values()) {
       if (!track.position) continue;
       const key = JSON.stringify([track.status, track.position, track.ellipse, track.reports, track.drones]);

@@ -20,6 +20,8 @@ export class Store {
     this.mission = null;
     this.radio = null;
     this.refused = 0;
+    /** The state's `plan` (what identifies the plan served at /api/plan), if any. */
+    this.plan = null;
     /** Receiver ID -> vehicle row (the state's, trail bounded). */
     this.vehicles = new Map();
     /** Track ID -> track. */
@@ -111,6 +113,7 @@ export class Store {
     this.mission = state.mission || null;
     this.radio = state.radio || null;
     this.refused = state.refused ?? 0;
+    this.plan = state.plan ?? null;
     this.vehicles = new Map();
     for (const v of state.vehicles || []) {
       this.vehicles.set(v.id, { ...v, trail: (v.trail || []).slice(-TRAIL_POINTS) });
@@ -125,6 +128,7 @@ export class Store {
     if (delta.mission) this.mission = { ...this.mission, ...delta.mission };
     if (delta.radio) this.radio = delta.radio;
     if (delta.refused !== undefined) this.refused = delta.refused;
+    if (delta.plan !== undefined) this.plan = delta.plan;
     for (const row of delta.vehicles || []) {
       const old = this.vehicles.get(row.id);
       const trail = old ? old.trail.concat(row.trail || []) : row.trail || [];
