@@ -3,57 +3,14 @@
 // command POSTed name. The page is served from web/ by the test and fed a
 // crafted stream (docs/command_center.md), so each step is deterministic; the
 // mission test drives the same page against a real run.
-import fs from 'node:fs';
-import path from 'node:path';
-import { fileURLToPath } from 'node:url';
 import { test, expect } from '@playwright/test';
+import { STATE, openCrafted, vehicle } from './crafted.js';
 
-const WEB = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
-const ORIGIN = 'http://127.0.0.1:9';
-const TYPES = { '.html': 'text/html', '.js': 'text/javascript', '.css': 'text/css', '.png': 'image/png', '.svg': 'image/svg+xml' };
-
-function vehicle(id, battery, link = 'ok') {
-  return {
-    id, colour: ['#1f77b4', '#ff7f0e', '#2ca02c', '#d62728'][id - 1], mode: 'search',
-    position: [46.30 + id * 0.001, -74.50], altitude_m: 60, speed_mps: 10, heading_deg: 90 * id,
-    battery_percent: battery, link, heard_s_ago: link === 'lost' ? 14.2 : 0.4, telemetry_hz: 1,
-    progress: 0.1 * id, task: 'lane', task_text: `lane ${id} of 12`, track_id: 0, trail: [],
-  };
-}
-
-const STATE = {
-  source: 'simulated', read_only: false, time_s: 50,
-  mission: { state: 'running', mission_id: 1, coverage: 0.1, elapsed_s: 50, vehicles_active: 4, vehicles_lost: 0, fires_tentative: 0, fires_confirmed: 0 },
-  // Battery order (ascending) is 3, 1, 4, 2: not the ID order.
-  vehicles: [vehicle(1, 60), vehicle(2, 90), vehicle(3, 40), vehicle(4, 75)],
-  tracks: [], radio: { busy_fraction: 0.3, payload_bytes_per_s: 900, retries: 0, timeouts: 0, telemetry_age_s: { 1: 0.4, 2: 0.4, 3: 0.4, 4: 0.4 } },
-  alerts: [], commands: [], refused: 0,
-};
-
-let stream; // the page's WebSocket, mocked
-const posted = [];
+let stream;
+let posted;
 
 test.beforeEach(async ({ page }) => {
-  posted.length = 0;
-  await page.route('**/*', async (route) => {
-    const url = new URL(route.request().url());
-    if (url.origin !== ORIGIN) return route.abort('blockedbyclient');
-    if (url.pathname === '/api/command') {
-      posted.push(route.request().postDataJSON());
-      return route.fulfill({ status: 202, json: { id: posted.length, state: 'queued' } });
-    }
-    if (url.pathname === '/api/plan') return route.fulfill({ json: { type: 'FeatureCollection', features: [] } });
-    if (url.pathname.startsWith('/api/') || url.pathname.startsWith('/tiles/')) return route.fulfill({ status: 404, body: '' });
-    const file = path.join(WEB, url.pathname === '/' ? 'index.html' : url.pathname);
-    if (!file.startsWith(WEB) || !fs.existsSync(file)) return route.fulfill({ status: 404, body: '' });
-    return route.fulfill({ body: fs.readFileSync(file), contentType: TYPES[path.extname(file)] || 'application/octet-stream' });
-  });
-  await page.routeWebSocket(`${ORIGIN.replace('http', 'ws')}/ws`, (ws) => {
-    stream = ws;
-    ws.send(JSON.stringify({ type: 'snapshot', state: STATE }));
-  });
-  await page.goto(`${ORIGIN}/`);
-  await expect(page.locator('#fleet tbody tr')).toHaveCount(4);
+  ({ stream, posted } = await openCrafted(page));
 });
 
 const rowIds = (page) => page.locator('#fleet tbody tr').evaluateAll((rows) => rows.map((r) => Number(r.dataset.vehicle)));
