@@ -124,7 +124,7 @@ export class Store {
   }
 
   applyDelta_(delta) {
-    if (delta.time_s !== undefined) this.timeS = delta.time_s;
+    if (delta.time_s !== undefined && delta.time_s !== null) this.timeS = delta.time_s;
     if (delta.mission) this.mission = { ...this.mission, ...delta.mission };
     if (delta.radio) this.radio = delta.radio;
     if (delta.refused !== undefined) this.refused = delta.refused;
@@ -136,6 +136,7 @@ export class Store {
       this.vehicles.set(row.id, { ...old, ...row, trail });
     }
     for (const track of delta.tracks || []) this.tracks.set(track.id, track);
+    for (const id of delta.removed_tracks || []) this.tracks.delete(id);
     for (const command of delta.commands || []) this.commands.set(command.id, command);
     if (delta.alerts && delta.alerts.length) {
       this.alerts.push(...delta.alerts);

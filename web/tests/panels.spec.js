@@ -59,6 +59,9 @@ test('a fire track is drawn by status, and its popup tells drones, views and fir
   await expect(popup).toContainText('drones 2, 4 (2)');
   await expect(popup).toContainText('views (reports) 3');
   await expect(popup).toContainText('first report 0:40');
+  // A track the server no longer holds leaves the map.
+  stream.send(JSON.stringify({ type: 'delta', time_s: 90, removed_tracks: [4] }));
+  await expect(ellipse).toHaveCount(0);
 });
 
 test('re-task: the point clicked on the map goes with the selected drone\'s ID', async ({ page }) => {
