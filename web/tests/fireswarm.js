@@ -32,22 +32,15 @@ fires:
 export const DRONES = [1, 2, 3];
 
 /**
- * Starts the run. Resolves to {url, token, report, dir, exited, output(), stop()}
- * once it listens; `exited` resolves to the exit code.
+ * Starts `fireswarm ARGS` (which include `--http 127.0.0.1:0`) and resolves,
+ * once it prints the URL it listens on, to {url, exited, output(), stop()};
+ * `exited` resolves to the exit code (or signal).
  */
-export async function startRun({ scenario = SCENARIO, pace = Number(process.env.FIRESWARM_PACE || 10), token = 'test-operator-token' } = {}) {
+export async function startProcess(args, { cwd = os.tmpdir() } = {}) {
   if (!fs.existsSync(FIRESWARM)) {
     throw new Error(`fireswarm binary not found at ${FIRESWARM} (build it, or set FIRESWARM)`);
   }
-  const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'fireswarm-web-'));
-  const scenarioFile = path.join(dir, 'scenario.yaml');
-  fs.writeFileSync(scenarioFile, scenario);
-  const tokenFile = path.join(dir, 'operator.token');
-  fs.writeFileSync(tokenFile, `${token}\n`, { mode: 0o600 });
-  const report = path.join(dir, 'report.json');
-  const args = ['run', scenarioFile, '--http', '127.0.0.1:0', '--pace', String(pace),
-    '--operator-token-file', tokenFile, '--report', report];
-  const child = spawn(FIRESWARM, args, { cwd: dir, stdio: ['ignore', 'pipe', 'pipe'] });
+  const child = spawn(FIRESWARM, args, { cwd, stdio: ['ignore', 'pipe', 'pipe'] });
   let out = '';
   child.stdout.on('data', (d) => (out += d));
   child.stderr.on('data', (d) => (out += d));
@@ -68,11 +61,33 @@ export async function startRun({ scenario = SCENARIO, pace = Number(process.env.
     });
   });
   return {
-    url, token, report, dir, exited,
+    url, exited,
     output: () => out,
     async stop() {
       if (child.exitCode === null && child.signalCode === null) child.kill('SIGTERM');
       await exited;
+    },
+  };
+}
+
+/**
+ * Starts the mission: `fireswarm run SCENARIO --http 127.0.0.1:0 --pace K
+ * --operator-token-file F --report R` in a temporary directory. Resolves to
+ * {url, token, report, dir, exited, output(), stop()} once it listens.
+ */
+export async function startRun({ scenario = SCENARIO, pace = Number(process.env.FIRESWARM_PACE || 10), token = 'test-operator-token' } = {}) {
+  const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'fireswarm-web-'));
+  const scenarioFile = path.join(dir, 'scenario.yaml');
+  fs.writeFileSync(scenarioFile, scenario);
+  const tokenFile = path.join(dir, 'operator.token');
+  fs.writeFileSync(tokenFile, `${token}\n`, { mode: 0o600 });
+  const report = path.join(dir, 'report.json');
+  const process_ = await startProcess(['run', scenarioFile, '--http', '127.0.0.1:0', '--pace', String(pace),
+    '--operator-token-file', tokenFile, '--report', report], { cwd: dir });
+  return {
+    ...process_, token, report, dir,
+    async stop() {
+      await process_.stop();
       fs.rmSync(dir, { recursive: true, force: true });
     },
   };
