@@ -67,13 +67,13 @@ export class Commands {
     else this.ask_(kind, [this.selected_]);
   }
 
+  /** Waits for a map click for `kind` (null: stop waiting); the drone is fixed now. */
   pick_(kind) {
     this.picking_ = kind;
     document.body.classList.toggle('picking', kind !== null);
     this.hint_.hidden = kind === null;
-    if (kind === 'retask') this.pickTarget_ = this.selected_;
-    else if (kind === 'investigate') this.pickTarget_ = this.selected_;
     if (kind !== null) {
+      this.pickTarget_ = this.selected_; // investigate without one: the server picks
       const who = this.pickTarget_ === null ? '' : ` (drone ${this.pickTarget_})`;
       this.hint_.textContent = `Click the map: the point to ${kind === 'retask' ? 're-task to' : 'investigate'}${who}. Esc cancels.`;
     }
