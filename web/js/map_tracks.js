@@ -35,8 +35,8 @@ export class TrackLayer {
       let t = this.tracks_.get(track.id);
       if (t && t.key === key) continue;
       const colour = STATUS_COLOUR[track.status] || '#000';
-      const e = track.ellipse || { semi_major_m: 0, semi_minor_m: 0, bearing_deg: 0 };
-      const outline = ellipse(track.position, e.semi_major_m, e.semi_minor_m, e.bearing_deg);
+      const e = track.ellipse; // null when the covariance is not finite: the centre only
+      const outline = e ? ellipse(track.position, e.semi_major_m, e.semi_minor_m, e.bearing_deg) : [];
       const style = { color: colour, weight: 2, fillColor: colour, fillOpacity: 0.2, pane: 'tracks', smoothFactor: 0 };
       if (!t) {
         const shape = L.polygon(outline, style).addTo(this.map_);
