@@ -44,3 +44,6 @@ if command -v ip >/dev/null 2>&1 && [ "$(id -u)" -eq 0 ]; then
       echo "install-deps: added multicast route 224.0.0.0/4 on lo" || true
   fi
 fi
+
+# The command-center page's browser tests: chromium, Node.js and web/'s npm packages.
+bash "$(dirname "$0")/install-web-deps.sh"

@@ -1,0 +1,76 @@
+// The drones on the map: each one's position as an arrow rotated to its heading
+// (an SVG in an L.divIcon, in its colour, its receiver ID beside it) and its
+// bounded trail. Markers are keyed by receiver ID and updated in place.
+/* global L */
+
+const ARROW = 'M0,-9 L6,7 L0,3 L-6,7 Z';
+
+function iconHtml(vehicle) {
+  return `<svg viewBox="-10 -10 20 20" width="22" height="22" style="transform: rotate(${vehicle.heading_deg || 0}deg)">` +
+    `<path d="${ARROW}" fill="${vehicle.colour || '#888'}" stroke="#000" stroke-width="1.2"/></svg>` +
+    `<span class="drone-id">${vehicle.id}</span>`;
+}
+
+export class FleetLayer {
+  constructor(map, onSelect) {
+    this.map_ = map;
+    this.onSelect_ = onSelect;
+    this.markers_ = new Map(); // receiver ID -> {marker, trail, heading}
+    this.selected_ = null;
+  }
+
+  select(id) {
+    this.selected_ = id;
+    for (const [markerId, m] of this.markers_) {
+      const element = m.marker.getElement();
+      if (element) element.classList.toggle('selected', markerId === id);
+    }
+  }
+
+  render(store) {
+    for (const vehicle of store.vehicles.values()) {
+      let m = this.markers_.get(vehicle.id);
+      const trail = vehicle.trail || [];
+      if (!vehicle.position) {
+        if (m) m.marker.remove();
+        continue;
+      }
+      if (!m) {
+        const icon = L.divIcon({ className: 'drone', html: iconHtml(vehicle), iconSize: [22, 22], iconAnchor: [11, 11] });
+        const marker = L.marker(vehicle.position, { icon, keyboard: false, title: `drone ${vehicle.id}` });
+        marker.on('click', () => this.onSelect_(vehicle.id));
+        const line = L.polyline(trail, { color: vehicle.colour, weight: 2, opacity: 0.8, interactive: false });
+        line.addTo(this.map_);
+        marker.addTo(this.map_);
+        m = { marker, trail: line, heading: vehicle.heading_deg, trailLength: trail.length, lastPoint: null };
+        this.markers_.set(vehicle.id, m);
+        this.decorate_(m, vehicle);
+      }
+      if (!this.map_.hasLayer(m.marker)) m.marker.addTo(this.map_);
+      m.marker.setLatLng(vehicle.position);
+      const element = m.marker.getElement();
+      if (m.heading !== vehicle.heading_deg && element) {
+        m.heading = vehicle.heading_deg;
+        element.querySelector('svg').style.transform = `rotate(${vehicle.heading_deg || 0}deg)`;
+      }
+      const last = trail.length ? trail[trail.length - 1] : null;
+      if (trail.length !== m.trailLength || last !== m.lastPoint) {
+        m.trailLength = trail.length;
+        m.lastPoint = last;
+        m.trail.setLatLngs(trail);
+      }
+      this.decorate_(m, vehicle);
+    }
+  }
+
+  decorate_(m, vehicle) {
+    const element = m.marker.getElement();
+    if (!element) return;
+    element.dataset.vehicle = String(vehicle.id);
+    element.dataset.lat = String(vehicle.position[0]);
+    element.dataset.lon = String(vehicle.position[1]);
+    element.dataset.link = vehicle.link || '';
+    element.classList.toggle('lost', vehicle.link === 'lost');
+    element.classList.toggle('selected', vehicle.id === this.selected_);
+  }
+}
