@@ -87,8 +87,17 @@ void CheckFlags(const Flags& f, const po::variables_map& values) {
   }
 }
 
+// Where the fleet launches, local metres: --launch, or the area's default.
+planner::Point LaunchPoint(const Flags& f, const planner::SearchArea& area) {
+  if (f.launch.empty()) return planner::DefaultLaunchPoint(area);
+  const common::EastNorth local = area.frame.ToLocal(*ParseLatLon(f.launch));
+  return {local.east_m, local.north_m};
+}
+
 // `area`: the search area as planned, its no-fly zones (--no-fly and the area
-// file's) kept out of by the legs the server makes up.
+// file's) kept out of by the legs the server makes up. The coverage on LCM is
+// the --camera's from telemetry, mounted straight down (serve has no pitch flag:
+// the planner's default, planner::FleetSpec::camera_pitch_deg).
 server::ServerConfig ServerConfigFor(const Flags& f, const planner::SearchArea& area) {
   server::ServerConfig config;
   config.radio.mode = ModeOf(f.link);
@@ -96,6 +105,11 @@ server::ServerConfig ServerConfigFor(const Flags& f, const planner::SearchArea& 
   config.radio.timing.baud = static_cast<int>(f.link.baud);
   config.telemetry_hz = f.telemetry_hz;
   config.no_fly = area.no_fly;
+  config.area = area.area;
+  config.camera = common::CameraModelByName(f.camera);
+  config.camera_pitch_deg = planner::FleetSpec{}.camera_pitch_deg;
+  const planner::Point launch = LaunchPoint(f, area);
+  config.launch_en_m = common::EastNorth{launch.x(), launch.y()};
   return config;
 }
 
@@ -108,11 +122,7 @@ std::vector<int> ReceiverIds(const Flags& f) {
 std::vector<server::DroneMission> PlanMissions(const Flags& f, const planner::SearchArea& area) {
   planner::FleetSpec fleet;
   fleet.receiver_ids = ReceiverIds(f);
-  planner::Point launch = planner::DefaultLaunchPoint(area);
-  if (!f.launch.empty()) {
-    const common::EastNorth local = area.frame.ToLocal(*ParseLatLon(f.launch));
-    launch = planner::Point(local.east_m, local.north_m);
-  }
+  const planner::Point launch = LaunchPoint(f, area);
   fleet.launch_points = {launch};
   fleet.altitude_m = f.altitude_m;
   fleet.speed_mps = f.speed_mps;

@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "fireswarm/common/atomic_file.hpp"
 #include "fireswarm/planner/export.hpp"
@@ -17,20 +18,13 @@ Json Position(const common::LatLon& p) {
   return Json::array({p.lon_deg, p.lat_deg});
 }
 
-// RFC 7946 3.1.6: exterior rings counter-clockwise, holes clockwise. Boost's rings
-// (x east, y north) are the opposite, so each ring is written back to front.
-template <typename Ring>
-Json RingCoordinates(const Ring& ring, const common::LocalFrame& frame) {
-  Json positions = Json::array();
-  for (auto it = ring.rbegin(); it != ring.rend(); ++it) {
-    positions.push_back(Position(frame.ToGeodetic({it->x(), it->y()})));
-  }
-  return positions;
-}
-
 Json PolygonFeature(const Polygon& polygon, const common::LocalFrame& frame, Json properties) {
-  Json rings = Json::array({RingCoordinates(polygon.outer(), frame)});
-  for (const auto& hole : polygon.inners()) rings.push_back(RingCoordinates(hole, frame));
+  Json rings = Json::array();
+  for (const std::vector<common::LatLon>& ring : GeoJsonRings(polygon, frame)) {
+    Json positions = Json::array();
+    for (const common::LatLon& p : ring) positions.push_back(Position(p));
+    rings.push_back(std::move(positions));
+  }
   return {{"type", "Feature"},
           {"properties", std::move(properties)},
           {"geometry", {{"type", "Polygon"}, {"coordinates", std::move(rings)}}}};
@@ -51,6 +45,23 @@ Json PathFeature(const DronePlan& drone) {
 }
 
 }  // namespace
+
+std::vector<std::vector<common::LatLon>> GeoJsonRings(const Polygon& polygon,
+                                                      const common::LocalFrame& frame) {
+  // Boost's rings (x east, y north) turn the other way round than RFC 7946's, so
+  // each ring is read back to front.
+  const auto reversed = [&](const auto& ring) {
+    std::vector<common::LatLon> out;
+    out.reserve(ring.size());
+    for (auto it = ring.rbegin(); it != ring.rend(); ++it) {
+      out.push_back(frame.ToGeodetic({it->x(), it->y()}));
+    }
+    return out;
+  };
+  std::vector<std::vector<common::LatLon>> rings{reversed(polygon.outer())};
+  for (const auto& hole : polygon.inners()) rings.push_back(reversed(hole));
+  return rings;
+}
 
 std::string PlanToGeoJson(const Plan& plan, const SearchArea& area, const FleetSpec& fleet) {
   Json features = Json::array();

@@ -68,6 +68,12 @@ server::ServerConfig MakeServerConfig(const Scenario& scenario) {
   // The zones the plan kept out of, in the same local frame as the server's.
   config.no_fly = scenario.area.no_fly;
   config.no_fly_seed = static_cast<unsigned>(scenario.seed);
+  // The server's coverage from telemetry, on the grid and camera the scorer uses
+  // with the truth; the launch site for the published plan.
+  config.area = scenario.area.area;
+  config.camera = *scenario.fleet.camera;
+  config.camera_pitch_deg = scenario.fleet.camera_pitch_deg;
+  config.launch_en_m = scenario.area.frame.ToLocal(scenario.fleet.launch);
   return config;
 }
 

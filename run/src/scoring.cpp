@@ -94,7 +94,9 @@ double Percentile(std::vector<double> values, double p) {
 }
 
 Scorer::Scorer(const Scenario& scenario, std::vector<FireSpec> fires)
-    : scenario_(scenario), fires_(std::move(fires)), coverage_(scenario.area) {
+    : scenario_(scenario),
+      fires_(std::move(fires)),
+      coverage_(scenario.area.area, scenario.area.no_fly) {
   for (const int id : scenario.fleet.ReceiverIds()) traces_[id] = VehicleTrace{};
 }
 
@@ -116,7 +118,10 @@ void Scorer::Observe(double t_s, const sim2d::Simulation& simulation,
   if (t_s + kEps >= next_coverage_s_) {
     next_coverage_s_ += kCoverageSampleS;
     for (const sim2d::VehicleTruth& truth : world.Truths()) {
-      coverage_.Mark(truth, *scenario_.fleet.camera, scenario_.fleet.camera_pitch_deg);
+      // A vehicle on the ground, crashed or lost sees nothing to search.
+      if (truth.phase != sim2d::FlightPhase::kFlying) continue;
+      coverage_.Mark(truth.position_m, truth.heading_rad, truth.altitude_m, *scenario_.fleet.camera,
+                     scenario_.fleet.camera_pitch_deg);
     }
   }
   if (t_s + kEps >= next_series_s_) {

@@ -2,17 +2,11 @@
 // reads truth and the server's results side by side. Private to the runner.
 //
 // The runner calls Observe() after every lockstep step and Finish() once at the
-// end (scoring.cpp; the coverage raster in coverage_grid.cpp, the `expect`
-// checks in expectations.cpp). Approximations (documented in docs/scenario.md's report section):
-//  * coverage: the search area (area minus no-fly zones) is rasterised in square
-//    cells (5 m, coarser when the area would need more than kMaxCoverageCells);
-//    every 0.5 s of simulated time each airborne vehicle marks the cells whose
-//    centres lie in its camera's ground footprint, a rectangle around the ground
-//    point under the camera's optical axis: across the track the camera's
-//    near-edge width (common::FootprintWidthM), along it from the near to the far
-//    edge of the vertical field of view (far edge capped at 1 km for cameras
-//    looking near the horizon), computed for level flight at the TRUE position,
-//    altitude and heading (roll and pitch of the body are ignored).
+// end (scoring.cpp; the `expect` checks in expectations.cpp). Approximations
+// (documented in docs/scenario.md's report section):
+//  * coverage: planner::CoverageGrid (the raster and footprint the server's
+//    mission_status_t coverage uses too), marked every 0.5 s of simulated time
+//    by each flying vehicle at its TRUE position, altitude and heading.
 //  * min_separation_m: the smallest 3D distance between two flying vehicles,
 //    sampled every 50 ms, and sim2d's exact near-miss minimum, which counts a
 //    pair while either one flies (a drone landing next to a parked one).
@@ -36,6 +30,7 @@
 #include <optional>
 #include <vector>
 
+#include "fireswarm/planner/coverage_grid.hpp"
 #include "fireswarm/run/report.hpp"
 #include "fireswarm/run/scenario.hpp"
 #include "fireswarm/server/server.hpp"
@@ -56,29 +51,6 @@ inline constexpr double kVisibleExcessK = 10.0;
 std::optional<sim2d::Vec2> FireHotCentre(const sim2d::FireGrid& grid,
                                          const sim2d::Vec2& ignition_m);
 
-/// The search area rasterised, with the cells a camera has seen.
-class CoverageGrid {
- public:
-  explicit CoverageGrid(const planner::SearchArea& area);
-  /// Marks what a camera (model, mount pitch from the horizon) on a vehicle at
-  /// `truth` sees, flying level. Nothing when the vehicle is not flying.
-  void Mark(const sim2d::VehicleTruth& truth, const common::CameraModel& camera,
-            double camera_pitch_deg);
-  /// Seen cells / searchable cells, 0 when the area has none.
-  double Fraction() const;
-  double cell_m() const { return cell_m_; }
-
- private:
-  double min_e_ = 0.0;
-  double min_n_ = 0.0;
-  double cell_m_ = 5.0;
-  int cols_ = 0;
-  int rows_ = 0;
-  std::vector<std::uint8_t> state_;  // 0 outside, 1 searchable unseen, 2 seen
-  std::size_t searchable_ = 0;
-  std::size_t seen_ = 0;
-};
-
 /// What the runner hands over at the end besides the world and the server.
 struct FinalState {
   double sim_seconds = 0.0;
@@ -95,6 +67,8 @@ class Scorer {
   void Observe(double t_s, const sim2d::Simulation& simulation, const server::Server& server);
 
   double coverage() const { return coverage_.Fraction(); }
+  /// The raster behind coverage(): the class the server's coverage uses too.
+  const planner::CoverageGrid& coverage_grid() const { return coverage_; }
   /// Confirmed tracks so far (for the progress line).
   std::size_t confirmed_tracks() const { return confirmed_.size(); }
 
@@ -120,7 +94,7 @@ class Scorer {
 
   const Scenario& scenario_;
   std::vector<FireSpec> fires_;
-  CoverageGrid coverage_;
+  planner::CoverageGrid coverage_;
   std::vector<std::pair<double, double>> coverage_over_time_;
   std::map<int, VehicleTrace> traces_;
   struct Confirmation {

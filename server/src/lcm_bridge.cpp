@@ -8,6 +8,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <system_error>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -94,6 +95,24 @@ std::string CsvName(const char* channel) {
   return name + ".csv";
 }
 
+// Appends `message` to its channel's CSV file in `dir`, created with its header
+// line on first use (kept open in `files`).
+template <typename Message>
+void AppendCsv(std::map<std::string, std::ofstream>& files, const std::filesystem::path& dir,
+               const char* channel, const Message& message) {
+  const std::string name = CsvName(channel);
+  auto found = files.find(name);
+  if (found == files.end()) {
+    const std::filesystem::path path = dir / name;
+    std::ofstream file(path);
+    if (!file) throw std::runtime_error("cannot create " + path.string());
+    file.precision(10);
+    file << CsvHeader(message) << '\n';
+    found = files.emplace(name, std::move(file)).first;
+  }
+  CsvRows(found->second, message);
+}
+
 double PeriodS(double hz) {
   return hz > 0.0 ? 1.0 / hz : std::numeric_limits<double>::infinity();
 }
@@ -160,18 +179,9 @@ void LcmBridge::Emit(const char* channel, const Message& message, std::int64_t u
       throw std::runtime_error("cannot write the LCM log " + config_.log_path->string());
     }
   }
-  if (config_.csv_dir) {
-    const std::string name = CsvName(channel);
-    auto found = csv_.find(name);
-    if (found == csv_.end()) {
-      const std::filesystem::path path = *config_.csv_dir / name;
-      std::ofstream file(path);
-      if (!file) throw std::runtime_error("cannot create " + path.string());
-      file.precision(10);
-      file << CsvHeader(message) << '\n';
-      found = csv_.emplace(name, std::move(file)).first;
-    }
-    CsvRows(found->second, message);
+  // plan_t is one GeoJSON string, no table: it goes to LCM and the log only.
+  if constexpr (!std::is_same_v<Message, plan_t>) {
+    if (config_.csv_dir) AppendCsv(csv_, *config_.csv_dir, channel, message);
   }
 }
 
@@ -210,6 +220,11 @@ void LcmBridge::Publish(const Server& server, double now_s, std::int64_t utime,
     Emit(kRadioStatsChannel, ToRadioStats(server, now_s, utime, window_s, previous_counters_),
          utime);
   }
+  // The plan: as soon as a mission is loaded (its timer starts then), then at plan_hz.
+  if (server.mission() != nullptr) {
+    next_s_.try_emplace(kPlanChannel, now_s);
+    if (due(kPlanChannel, rates.plan_hz)) Emit(kPlanChannel, ToPlan(server, utime), utime);
+  }
 }
 
 std::vector<OperatorCommand> LcmBridge::TakeCommands() {
@@ -227,9 +242,11 @@ double LcmBridge::NextPublishS() const {
       {kVehicleStateChannel, rates.vehicle_state_hz},
       {kFireTracksChannel, rates.fire_tracks_hz},
       {kMissionStatusChannel, rates.mission_status_hz},
-      {kRadioStatsChannel, rates.radio_stats_hz}};
+      {kRadioStatsChannel, rates.radio_stats_hz},
+      {kPlanChannel, rates.plan_hz}};
   for (const auto& [channel, hz] : channels) {
-    if (hz > 0.0) next = std::min(next, next_s_.at(channel));
+    const auto found = next_s_.find(channel);  // the plan's only once a mission is loaded
+    if (hz > 0.0 && found != next_s_.end()) next = std::min(next, found->second);
   }
   return next;
 }

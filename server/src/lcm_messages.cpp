@@ -32,6 +32,7 @@ void LcmRates::Validate() const {
   check(fire_tracks_hz, "fire_tracks_hz");
   check(mission_status_hz, "mission_status_hz");
   check(radio_stats_hz, "radio_stats_hz");
+  check(plan_hz, "plan_hz");
 }
 
 vehicle_state_t ToVehicleState(const Server& server, std::uint8_t vehicle, double now_s,
@@ -117,9 +118,13 @@ mission_status_t ToMissionStatus(const Server& server, double now_s, std::int64_
   const MissionManager* mission = server.mission();
   m.mission_id = 0;
   if (mission != nullptr && !mission->vehicles().empty()) m.mission_id = 1;
-  // The server sees the fleet only through telemetry: its coverage estimate is the
-  // share of the planned waypoints passed (the plan covers the whole area).
-  m.coverage_fraction = mission != nullptr ? mission->WaypointFraction() : 0.0;
+  // The ground the cameras saw by telemetry, the report's measure; without an
+  // area configured, the share of the planned waypoints passed.
+  if (const planner::CoverageGrid* coverage = server.coverage()) {
+    m.coverage_fraction = coverage->Fraction();
+  } else {
+    m.coverage_fraction = mission != nullptr ? mission->WaypointFraction() : 0.0;
+  }
   m.elapsed_s = server.state() == MissionState::kIdle ? 0.0 : now_s - server.mission_started_s();
   m.vehicles_lost = static_cast<std::int16_t>(server.registry().LostAt(now_s).size());
   m.vehicles_active = static_cast<std::int16_t>(server.registry().ActiveAt(now_s).size());

@@ -12,6 +12,7 @@
 #include <utility>
 #include <variant>
 
+#include "fireswarm/common/angles.hpp"
 #include "fireswarm/common/time.hpp"
 #include "local_point.hpp"
 
@@ -77,6 +78,17 @@ void ServerConfig::Validate() const {
   if (!(reject_grace_s >= 0.0) || !std::isfinite(reject_grace_s)) {
     throw std::invalid_argument("reject_grace_s must be >= 0");
   }
+  if (!area.empty() && !camera) {
+    throw std::invalid_argument("camera must be given with an area (the coverage is the camera's)");
+  }
+  if (camera) {
+    common::ValidateCamera(*camera, camera_pitch_deg, "server config");
+    // The footprint needs the image's near edge on the ground (FootprintWidthM).
+    if (!(camera_pitch_deg < 0.0)) {
+      throw std::invalid_argument(
+          "server config: camera_pitch_deg must be < 0 (below the horizon)");
+    }
+  }
 }
 
 const char* ToString(MissionState state) {
@@ -104,7 +116,9 @@ Server::Server(const ServerConfig& config, const common::LocalFrame& frame)
       scheduler_(std::make_unique<radio::MasterScheduler>(config.radio)),
       registry_(config.link),
       fusion_(config.fusion),
-      investigations_(InvestigationsConfigOf(config_), frame_, transit_.get()) {}
+      investigations_(InvestigationsConfigOf(config_), frame_, transit_.get()) {
+  if (!config_.area.empty()) coverage_.emplace(config_.area, config_.no_fly);
+}
 
 void Server::AddVehicle(int receiver_id, double now_s) {
   registry_.Register(receiver_id);
@@ -154,6 +168,7 @@ void Server::OnEvent(const radio::SchedulerEvent& event, double now_s) {
     const Eigen::Vector2d where =
         LocalM(frame_, {telemetry->telemetry.lat_deg, telemetry->telemetry.lon_deg});
     investigations_.OnPosition(telemetry->vehicle, where, now_s);
+    MarkCoverage(telemetry->telemetry, where);
     clock_offset_s_[telemetry->vehicle] =
         now_s - static_cast<double>(telemetry->telemetry.time_ms) / common::kMillisPerSecond;
   } else if (const auto* report = std::get_if<radio::FireReportReceived>(&event)) {
@@ -177,6 +192,14 @@ void Server::OnEvent(const radio::SchedulerEvent& event, double now_s) {
     journaled_phases_[id] = phase;
     Record(now_s, PhaseChanged{id, phase});
   }
+}
+
+void Server::MarkCoverage(const radio::Telemetry& telemetry, const Eigen::Vector2d& where_en_m) {
+  // Without a fix the vehicle sends (0, 0); below kMinCoverageAltitudeM the grid
+  // marks nothing (taking off, landing, on the ground).
+  if (!coverage_ || (telemetry.flags & radio::telemetry_flags::kGpsFix) == 0) return;
+  coverage_->Mark(where_en_m, telemetry.heading_deg * common::kRadPerDeg, telemetry.altitude_m,
+                  *config_.camera, config_.camera_pitch_deg);
 }
 
 void Server::OnFireReport(const radio::FireReportReceived& received, double now_s) {

@@ -21,6 +21,7 @@
 #include "fireswarm/fire_track_list_t.hpp"
 #include "fireswarm/mission_status_t.hpp"
 #include "fireswarm/operator_command_t.hpp"
+#include "fireswarm/plan_t.hpp"
 #include "fireswarm/radio_stats_t.hpp"
 #include "fireswarm/vehicle_state_t.hpp"
 
@@ -170,7 +171,8 @@ TEST_F(RunCommandTest, LogsTheServerOnLcmInSimulatedTime) {
   EXPECT_EQ(Files(), (std::set<std::string>{"ok.yaml", "r.json", "run.lcmlog"}))
       << "the scratch log is gone";
   std::ifstream in(PathOf("r.json"));
-  const double sim_s = nlohmann::json::parse(in)["sim_seconds"].get<double>();
+  const nlohmann::json report = nlohmann::json::parse(in);
+  const double sim_s = report["sim_seconds"].get<double>();
   ASSERT_GT(sim_s, 50.0);
 
   const std::vector<LoggedEvent> events = ReadLcmLog(PathOf("run.lcmlog"));
@@ -181,6 +183,7 @@ TEST_F(RunCommandTest, LogsTheServerOnLcmInSimulatedTime) {
   std::int64_t previous_status_utime = -1;
   bool saw_returning = false;
   bool fixed_before_end = false;
+  double last_coverage = -1.0;
   for (const LoggedEvent& event : events) {
     ++per_channel[event.channel];
     // One time line: the event times never go back.
@@ -207,6 +210,17 @@ TEST_F(RunCommandTest, LogsTheServerOnLcmInSimulatedTime) {
       if (saw_returning) {
         EXPECT_NE(status.state, fireswarm::mission_status_t::STATE_RUNNING);
       }
+      last_coverage = status.coverage_fraction;
+    } else if (event.channel == "FIRESWARM_PLAN") {
+      const auto plan = Decode<fireswarm::plan_t>(event);
+      EXPECT_EQ(plan.utime, event.timestamp);
+      EXPECT_EQ(plan.mission_id, 1);
+      int lanes = 0;
+      const nlohmann::json geojson = nlohmann::json::parse(plan.geojson);
+      for (const auto& feature : geojson["features"]) {
+        lanes += feature["properties"]["kind"] == "lanes" ? 1 : 0;
+      }
+      EXPECT_EQ(lanes, 2) << "one per drone";
     } else if (event.channel == "FIRESWARM_FIRE_TRACKS") {
       EXPECT_EQ(Decode<fireswarm::fire_track_list_t>(event).utime, event.timestamp);
     } else if (event.channel == "FIRESWARM_RADIO_STATS") {
@@ -221,7 +235,7 @@ TEST_F(RunCommandTest, LogsTheServerOnLcmInSimulatedTime) {
       ADD_FAILURE() << "unexpected channel " << event.channel;
     }
   }
-  // The whole run at the bridge's rates (LcmRates): 2 Hz per vehicle, 1 Hz, 0.5 Hz.
+  // The whole run at the bridge's rates (LcmRates): 2 Hz per vehicle, 1 Hz, 0.5 Hz, 0.2 Hz.
   EXPECT_LE(events.front().timestamp, 1'000'000);
   EXPECT_GE(events.back().timestamp, static_cast<std::int64_t>((sim_s - 1.0) * 1e6));
   EXPECT_LE(events.back().timestamp, static_cast<std::int64_t>(sim_s * 1e6) + 1);
@@ -233,6 +247,10 @@ TEST_F(RunCommandTest, LogsTheServerOnLcmInSimulatedTime) {
   EXPECT_TRUE(fixed_before_end) << "positions reached the server";
   EXPECT_NEAR(per_channel["FIRESWARM_FIRE_TRACKS"], sim_s, 1.0);
   EXPECT_NEAR(per_channel["FIRESWARM_RADIO_STATS"], 0.5 * sim_s, 1.0);
+  EXPECT_NEAR(per_channel["FIRESWARM_PLAN"], 0.2 * sim_s, 1.0);
+  // The server's coverage is the camera's, as the report counts it (issue 15).
+  EXPECT_NEAR(last_coverage, report["coverage"].get<double>(), 0.01);
+  EXPECT_GT(last_coverage, 0.0);
 }
 
 TEST_F(RunCommandTest, TheSameScenarioGivesTheSameLogAndPublishesLive) {

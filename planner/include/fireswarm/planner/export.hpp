@@ -13,6 +13,13 @@
 
 namespace fireswarm::planner {
 
+/// A polygon's rings in WGS84 through `frame` as RFC 7946 3.1.6 orders them: the
+/// exterior ring first, counter-clockwise, then each hole, clockwise; each closed.
+/// The one place a local polygon becomes GeoJSON rings (this export, the server's
+/// published plan).
+std::vector<std::vector<common::LatLon>> GeoJsonRings(const Polygon& polygon,
+                                                      const common::LocalFrame& frame);
+
 /// The plan as an RFC 7946 FeatureCollection ([lon, lat], right-hand rule rings):
 /// per drone a LineString (properties: kind "path", receiver_id, length_m, time_s,
 /// sorties, waypoints) and its region as Polygons (kind "region", receiver_id);

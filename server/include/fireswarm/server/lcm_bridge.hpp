@@ -1,9 +1,9 @@
 // The LCM side of the server: what it publishes (vehicle_state_t, fire tracks,
-// mission_status_t, radio_stats_t, each at its own rate; command_status_t when a
-// command is accepted or one of its targets changes state), what it accepts
+// mission_status_t, radio_stats_t, plan_t, each at its own rate; command_status_t
+// when a command is accepted or one of its targets changes state), what it accepts
 // (operator_command_t), the LCM log it writes for the stock `lcm-logplayer`, and
-// the per-message CSV files (the seed's ground station logged its telemetry to CSV
-// at fixed rates, 3.6).
+// the per-message CSV files (not plan_t: one GeoJSON string; the seed's ground station logged its
+// telemetry to CSV at fixed rates, 3.6).
 //
 // Times: LCM `utime` fields are microseconds of the clock the caller passes:
 // `fireswarm serve` passes the Unix-epoch wall clock; `fireswarm run` passes
@@ -26,6 +26,7 @@
 #include "fireswarm/fire_track_list_t.hpp"
 #include "fireswarm/mission_status_t.hpp"
 #include "fireswarm/operator_command_t.hpp"
+#include "fireswarm/plan_t.hpp"
 #include "fireswarm/radio_stats_t.hpp"
 #include "fireswarm/server/server.hpp"
 #include "fireswarm/vehicle_state_t.hpp"
@@ -45,6 +46,7 @@ inline constexpr const char* kMissionStatusChannel = "FIRESWARM_MISSION_STATUS";
 inline constexpr const char* kRadioStatsChannel = "FIRESWARM_RADIO_STATS";
 inline constexpr const char* kOperatorCommandChannel = "FIRESWARM_OPERATOR_COMMAND";
 inline constexpr const char* kCommandStatusChannel = "FIRESWARM_COMMAND_STATUS";
+inline constexpr const char* kPlanChannel = "FIRESWARM_PLAN";
 
 /// Publication rates, Hz (0 = not published).
 struct LcmRates {
@@ -52,6 +54,8 @@ struct LcmRates {
   double fire_tracks_hz = 1.0;
   double mission_status_hz = 1.0;
   double radio_stats_hz = 0.5;
+  /// plan_t: at once when a mission is loaded, then at this rate.
+  double plan_hz = 0.2;
   /// Throws std::invalid_argument naming the rate that is negative or not finite.
   void Validate() const;
 };
@@ -65,7 +69,14 @@ vehicle_state_t ToVehicleState(const Server& server, std::uint8_t vehicle, doubl
 /// track times converted with utime = `utime_at_zero` + seconds * 1e6.
 fire_track_list_t ToFireTrackList(const Server& server, std::int64_t utime,
                                   std::int64_t utime_at_zero);
+/// The mission's state and figures. coverage_fraction is Server::coverage()'s
+/// fraction (the cameras' coverage from telemetry, as a run's report counts it);
+/// without ServerConfig::area it falls back to MissionManager::WaypointFraction
+/// (0 without a mission).
 mission_status_t ToMissionStatus(const Server& server, double now_s, std::int64_t utime);
+/// The mission's plan (plan_geojson.hpp's PlanGeoJson, compact) with the
+/// mission ID mission_status_t gives.
+plan_t ToPlan(const Server& server, std::int64_t utime);
 /// The counters a radio_stats_t window is the difference of.
 struct RadioCounters {
   radio::SchedulerStats stats;

@@ -46,8 +46,10 @@
 #include <string>
 #include <vector>
 
+#include "fireswarm/common/camera_model.hpp"
 #include "fireswarm/common/local_frame.hpp"
 #include "fireswarm/common/time.hpp"
+#include "fireswarm/planner/coverage_grid.hpp"
 #include "fireswarm/planner/geometry.hpp"
 #include "fireswarm/planner/transit.hpp"
 #include "fireswarm/radio/master_scheduler.hpp"
@@ -93,7 +95,22 @@ struct ServerConfig {
   planner::MultiPolygon no_fly;
   /// Seed of the transit planning around `no_fly` (same seed, same routes).
   unsigned no_fly_seed = 1;
-  /// Throws std::invalid_argument naming the field.
+  /// The search area in the same local frame (planner::SearchArea::area: no-fly
+  /// zones cut out, holes kept). Given, the server marks a planner::CoverageGrid
+  /// (area minus `no_fly`) from every telemetry with a GPS fix at the reported
+  /// position, heading and altitude, through `camera` at `camera_pitch_deg`: the
+  /// coverage a run's report gives from the simulator's truth. Empty: no coverage
+  /// grid (coverage() is null; mission_status_t falls back to the share of
+  /// waypoints passed). It and the camera are also the published plan (plan_t).
+  planner::MultiPolygon area;
+  /// The fleet's camera; needed when `area` is given.
+  std::optional<common::CameraModel> camera;
+  /// The camera's mount pitch from the horizon, degrees, -90 straight down, [-90, 0).
+  double camera_pitch_deg = -90.0;
+  /// Where the fleet launches, local metres, for the published plan only.
+  std::optional<common::EastNorth> launch_en_m;
+  /// Throws std::invalid_argument naming the field (`camera` missing with an
+  /// `area`, a camera field or camera_pitch_deg out of range).
   void Validate() const;
 };
 
@@ -144,6 +161,10 @@ class Server {
   const radio::MasterScheduler& scheduler() const { return *scheduler_; }
   const std::vector<Investigation>& investigations() const { return investigations_.all(); }
   const common::LocalFrame& frame() const { return frame_; }
+  const ServerConfig& config() const { return config_; }
+  /// The ground the cameras have seen by telemetry (ServerConfig::area); null
+  /// without an area. Not journaled: a restored server counts from zero again.
+  const planner::CoverageGrid* coverage() const { return coverage_ ? &*coverage_ : nullptr; }
   /// Mission time of the first receipt of each (vehicle, report ID), s.
   const std::map<std::pair<std::uint8_t, std::uint16_t>, double>& report_receipts() const {
     return report_receipts_;
@@ -165,6 +186,7 @@ class Server {
 
  private:
   void OnEvent(const radio::SchedulerEvent& event, double now_s);
+  void MarkCoverage(const radio::Telemetry& telemetry, const Eigen::Vector2d& where_en_m);
   void OnFireReport(const radio::FireReportReceived& received, double now_s);
   void AfterFusion(const FireObservation& observation, const FireReportResult& result,
                    double now_s);
@@ -194,6 +216,7 @@ class Server {
   FireFusion fusion_;
   Investigations investigations_;  // holds transit_.get(): declared after it
   std::optional<MissionManager> mission_;
+  std::optional<planner::CoverageGrid> coverage_;  // with ServerConfig::area only
   MissionState state_ = MissionState::kIdle;
   double mission_started_s_ = 0.0;
   // Drones given up as lost whose lanes went to others -> ordered home since

@@ -1,42 +1,41 @@
+// The coverage raster (coverage_grid.hpp): searchable cells, and the camera
+// footprint's cells marked seen.
+#include "fireswarm/planner/coverage_grid.hpp"
+
 #include <algorithm>
 #include <boost/geometry.hpp>
 #include <cmath>
 #include <limits>
 
 #include "fireswarm/common/angles.hpp"
-#include "scoring.hpp"
 
-namespace fireswarm::run::internal {
+namespace fireswarm::planner {
 namespace {
 
 namespace bg = boost::geometry;
 
-constexpr double kCoverageCellM = 5.0;
-constexpr double kMaxCoverageCells = 2'000'000.0;
-constexpr double kFarEdgeCapM = 1'000.0;
-/// Below this a flying vehicle is taking off or landing: its camera is not searching.
-constexpr double kMinCoverageAltitudeM = 2.0;
 constexpr std::uint8_t kOutside = 0;
 constexpr std::uint8_t kUnseen = 1;
 constexpr std::uint8_t kSeen = 2;
 
 }  // namespace
 
-CoverageGrid::CoverageGrid(const planner::SearchArea& area) {
-  planner::Box box;
-  bg::envelope(area.area, box);
+CoverageGrid::CoverageGrid(const MultiPolygon& area, const MultiPolygon& no_fly) {
+  if (area.empty()) return;
+  Box box;
+  bg::envelope(area, box);
   min_e_ = box.min_corner().x();
   min_n_ = box.min_corner().y();
   const double width = box.max_corner().x() - min_e_;
   const double height = box.max_corner().y() - min_n_;
-  cell_m_ = std::max(kCoverageCellM, std::sqrt(width * height / kMaxCoverageCells));
+  cell_m_ = std::max(kCoverageGridCellM, std::sqrt(width * height / kMaxCoverageCells));
   cols_ = std::max(1, static_cast<int>(std::ceil(width / cell_m_)));
   rows_ = std::max(1, static_cast<int>(std::ceil(height / cell_m_)));
   state_.assign(static_cast<std::size_t>(cols_) * static_cast<std::size_t>(rows_), kOutside);
   for (int r = 0; r < rows_; ++r) {
     for (int c = 0; c < cols_; ++c) {
-      const planner::Point centre(min_e_ + (c + 0.5) * cell_m_, min_n_ + (r + 0.5) * cell_m_);
-      if (bg::covered_by(centre, area.area) && !bg::within(centre, area.no_fly)) {
+      const Point centre(min_e_ + (c + 0.5) * cell_m_, min_n_ + (r + 0.5) * cell_m_);
+      if (bg::covered_by(centre, area) && !bg::within(centre, no_fly)) {
         state_[static_cast<std::size_t>(r) * static_cast<std::size_t>(cols_) +
                static_cast<std::size_t>(c)] = kUnseen;
         ++searchable_;
@@ -45,12 +44,13 @@ CoverageGrid::CoverageGrid(const planner::SearchArea& area) {
   }
 }
 
-void CoverageGrid::Mark(const sim2d::VehicleTruth& truth, const common::CameraModel& camera,
-                        double camera_pitch_deg) {
-  if (truth.phase != sim2d::FlightPhase::kFlying || truth.altitude_m < kMinCoverageAltitudeM) {
+void CoverageGrid::Mark(const Eigen::Vector2d& position_en_m, double heading_rad, double altitude_m,
+                        const common::CameraModel& camera, double camera_pitch_deg) {
+  if (!position_en_m.allFinite() || !std::isfinite(heading_rad) || !std::isfinite(altitude_m) ||
+      altitude_m < kMinCoverageAltitudeM || state_.empty()) {
     return;
   }
-  const double h = truth.altitude_m;
+  const double h = altitude_m;
   const double depression = -camera_pitch_deg * common::kRadPerDeg;
   const double half_v = camera.vfov_deg * common::kRadPerDeg / 2.0;
   // Ground distance ahead of the vehicle of the image's near and far edges
@@ -61,9 +61,9 @@ void CoverageGrid::Mark(const sim2d::VehicleTruth& truth, const common::CameraMo
   const double far_m =
       far_angle > 0.0 ? std::min(h / std::tan(far_angle), kFarEdgeCapM) : kFarEdgeCapM;
   const double half_w = common::FootprintWidthM(camera, h, camera_pitch_deg) / 2.0;
-  const Eigen::Vector2d forward(std::sin(truth.heading_rad), std::cos(truth.heading_rad));
+  const Eigen::Vector2d forward(std::sin(heading_rad), std::cos(heading_rad));
   const Eigen::Vector2d right(forward.y(), -forward.x());
-  const Eigen::Vector2d& p = truth.position_m;
+  const Eigen::Vector2d& p = position_en_m;
   double lo_e = std::numeric_limits<double>::infinity();
   double lo_n = lo_e;
   double hi_e = -lo_e;
@@ -77,8 +77,15 @@ void CoverageGrid::Mark(const sim2d::VehicleTruth& truth, const common::CameraMo
       hi_n = std::max(hi_n, corner.y());
     }
   }
-  const auto col = [&](double e) { return static_cast<int>(std::floor((e - min_e_) / cell_m_)); };
-  const auto row = [&](double n) { return static_cast<int>(std::floor((n - min_n_) / cell_m_)); };
+  // Clamp before the cast: a footprint far off the grid must not overflow int.
+  const auto col = [&](double e) {
+    return static_cast<int>(
+        std::clamp(std::floor((e - min_e_) / cell_m_), -1.0, static_cast<double>(cols_)));
+  };
+  const auto row = [&](double n) {
+    return static_cast<int>(
+        std::clamp(std::floor((n - min_n_) / cell_m_), -1.0, static_cast<double>(rows_)));
+  };
   const int c0 = std::max(0, col(lo_e));
   const int c1 = std::min(cols_ - 1, col(hi_e));
   const int r0 = std::max(0, row(lo_n));
@@ -102,4 +109,4 @@ double CoverageGrid::Fraction() const {
   return searchable_ == 0 ? 0.0 : static_cast<double>(seen_) / static_cast<double>(searchable_);
 }
 
-}  // namespace fireswarm::run::internal
+}  // namespace fireswarm::planner

@@ -1,0 +1,109 @@
+// CoverageGrid: the raster the run's report and the server's mission_status_t
+// both count coverage on. Footprints checked cell by cell on 5 m cells.
+#include "fireswarm/planner/coverage_grid.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "planner/planner_test_helpers.hpp"
+
+namespace fireswarm::planner {
+namespace {
+
+using testing::Rect;
+
+const common::CameraModel& Seed() {
+  return common::CameraModelByName("seed");
+}  // 75 x 60 deg
+
+constexpr double kNorth = 0.0;
+constexpr double kEast = std::numbers::pi / 2.0;
+constexpr double kSouth = std::numbers::pi;
+
+TEST(CoverageGrid, ASquareHasItsCellsAndNoneSeenYet) {
+  const CoverageGrid grid({Rect(0, 0, 100, 100)}, {});
+  EXPECT_DOUBLE_EQ(grid.cell_m(), kCoverageGridCellM);
+  EXPECT_EQ(grid.searchable_cells(), 400U);
+  EXPECT_EQ(grid.seen_cells(), 0U);
+  EXPECT_DOUBLE_EQ(grid.Fraction(), 0.0);
+}
+
+// Nadir at 20 m: 2 h tan(37.5 deg) = 30.7 m across, 2 h tan(30 deg) = 23.1 m
+// along. Around (50, 50) that takes cell centres 37.5..62.5 across (6) and
+// 42.5..57.5 along (4): 24 cells, whichever way the vehicle heads.
+TEST(CoverageGrid, NadirFootprintMarksTheCellsUnderIt) {
+  for (const double heading_rad : {kNorth, kEast}) {
+    CoverageGrid grid({Rect(0, 0, 100, 100)}, {});
+    grid.Mark({50.0, 50.0}, heading_rad, 20.0, Seed(), -90.0);
+    EXPECT_EQ(grid.seen_cells(), 24U) << heading_rad;
+    EXPECT_DOUBLE_EQ(grid.Fraction(), 24.0 / 400.0);
+  }
+}
+
+TEST(CoverageGrid, ACellSeenTwiceCountsOnce) {
+  CoverageGrid grid({Rect(0, 0, 100, 100)}, {});
+  grid.Mark({50.0, 50.0}, kNorth, 20.0, Seed(), -90.0);
+  grid.Mark({50.0, 50.0}, kNorth, 20.0, Seed(), -90.0);
+  EXPECT_EQ(grid.seen_cells(), 24U);
+  // Flying high over everything sees it all, and no more than all.
+  grid.Mark({50.0, 50.0}, kNorth, 500.0, Seed(), -90.0);
+  EXPECT_DOUBLE_EQ(grid.Fraction(), 1.0);
+}
+
+// A camera pitched 45 deg down sees from h / tan(75 deg) to h / tan(15 deg)
+// ahead: heading north from the square's south edge it sees into the square,
+// heading south it sees the ground beyond the edge (one row of cells at most).
+TEST(CoverageGrid, ATiltedCameraLooksAhead) {
+  CoverageGrid ahead({Rect(0, 0, 100, 100)}, {});
+  ahead.Mark({50.0, 10.0}, kNorth, 20.0, Seed(), -45.0);
+  CoverageGrid behind({Rect(0, 0, 100, 100)}, {});
+  behind.Mark({50.0, 10.0}, kSouth, 20.0, Seed(), -45.0);
+  EXPECT_GT(ahead.seen_cells(), 5 * behind.seen_cells());
+  EXPECT_LE(behind.seen_cells(), 20U);
+}
+
+// Holes of the area and no-fly zones are not searchable: seeing them adds nothing.
+TEST(CoverageGrid, HolesAndNoFlyZonesAreNotCounted) {
+  Polygon holed = Rect(0, 0, 100, 100);
+  holed.inners().push_back(Rect(40, 40, 60, 60).outer());
+  boost::geometry::correct(holed);
+  CoverageGrid grid({holed}, {Rect(0, 0, 20, 100)});
+  // 400 cells, minus the hole's 16 and the no-fly strip's 80.
+  EXPECT_EQ(grid.searchable_cells(), 400U - 16U - 80U);
+  grid.Mark({50.0, 50.0}, kNorth, 20.0, Seed(), -90.0);
+  EXPECT_EQ(grid.seen_cells(), 24U - 16U);
+  grid.Mark({10.0, 50.0}, kNorth, 20.0, Seed(), -90.0);  // over the no-fly strip
+  EXPECT_EQ(grid.seen_cells(), 24U - 16U + 4U * 1U);     // its east edge reaches x = 22.5
+}
+
+TEST(CoverageGrid, NothingBelowTheSearchAltitudeOrFromNonsense) {
+  CoverageGrid grid({Rect(0, 0, 100, 100)}, {});
+  grid.Mark({50.0, 50.0}, kNorth, kMinCoverageAltitudeM - 0.1, Seed(), -90.0);
+  constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
+  grid.Mark({kNan, 50.0}, kNorth, 20.0, Seed(), -90.0);
+  grid.Mark({50.0, 50.0}, kNan, 20.0, Seed(), -90.0);
+  grid.Mark({50.0, 50.0}, kNorth, kNan, Seed(), -90.0);
+  // Far away (a vehicle reporting a wild position) is off the grid, not a crash.
+  grid.Mark({1e12, -1e12}, kNorth, 20.0, Seed(), -90.0);
+  EXPECT_EQ(grid.seen_cells(), 0U);
+}
+
+TEST(CoverageGrid, AnEmptyAreaHasNothingToSee) {
+  CoverageGrid grid({}, {});
+  grid.Mark({0.0, 0.0}, kNorth, 20.0, Seed(), -90.0);
+  EXPECT_EQ(grid.searchable_cells(), 0U);
+  EXPECT_DOUBLE_EQ(grid.Fraction(), 0.0);
+}
+
+// A large area gets coarser cells so the raster stays within kMaxCoverageCells.
+TEST(CoverageGrid, ALargeAreaGetsCoarserCells) {
+  const CoverageGrid grid({Rect(0, 0, 10'000, 10'000)}, {});
+  EXPECT_NEAR(grid.cell_m(), std::sqrt(1e8 / kMaxCoverageCells), 1e-9);
+  EXPECT_LE(static_cast<double>(grid.searchable_cells()), kMaxCoverageCells);
+}
+
+}  // namespace
+}  // namespace fireswarm::planner
