@@ -111,6 +111,14 @@ const char* CommandKind(OperatorCommand::Kind command) {
     case OperatorCommand::Kind::kInvestigatePoint:
     case OperatorCommand::Kind::kRetaskVehicle:
       return "investigate_order";
+    // Per-drone and fleet orders: the server core takes them next (wt-core).
+    case OperatorCommand::Kind::kHold:
+    case OperatorCommand::Kind::kResume:
+    case OperatorCommand::Kind::kReturnVehicle:
+    case OperatorCommand::Kind::kLand:
+    case OperatorCommand::Kind::kHoldAll:
+    case OperatorCommand::Kind::kResumeAll:
+      break;
   }
   return "command";
 }

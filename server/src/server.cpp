@@ -185,6 +185,14 @@ bool Server::Handle(const OperatorCommand& command, common::Nanos now, std::stri
       Investigate(*vehicle, command.point, command.radius_m, 0, now_s);
       return true;
     }
+    // Per-drone and fleet orders: the server core takes them next (wt-core).
+    case Kind::kHold:
+    case Kind::kResume:
+    case Kind::kReturnVehicle:
+    case Kind::kLand:
+    case Kind::kHoldAll:
+    case Kind::kResumeAll:
+      return refuse("this server does not take that command yet");
   }
   return refuse("unknown command");
 }

@@ -16,6 +16,12 @@ struct OperatorCommand {
     kReturnAll = 3,
     kInvestigatePoint = 4,
     kRetaskVehicle = 5,
+    kHold = 6,
+    kResume = 7,
+    kReturnVehicle = 8,
+    kLand = 9,
+    kHoldAll = 10,
+    kResumeAll = 11,
   };
   Kind kind = Kind::kStart;
   std::uint8_t vehicle = 0;  ///< kRetaskVehicle (required), kInvestigatePoint (0 = server chooses)

@@ -1,0 +1,30 @@
+// POST /api/command bodies (docs/command_center.md "Commands") -> the operator
+// commands the server core takes, the same as operator_command_t on LCM.
+#pragma once
+
+#include <cstddef>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+
+#include "fireswarm/server/operator_command.hpp"
+
+namespace fireswarm::server {
+
+/// The longest `reason` a web command may carry, bytes.
+inline constexpr std::size_t kMaxReasonBytes = 200;
+
+/// Parses one command body: {"kind": K, ...}. Kinds and their fields:
+/// - per drone: `hold`, `resume`, `return`, `land` (`vehicle` required); `retask`
+///   (`vehicle`, `lat`, `lon` required, `radius_m` optional);
+/// - `investigate` (`lat`, `lon` required; `vehicle`, `radius_m` optional);
+/// - fleet: `start`, `hold_all`, `resume_all`, `return_all`, `abort`;
+/// - every kind: `reason` optional (a string of at most kMaxReasonBytes bytes).
+/// `vehicle` is an integer 1..254, `lat` a number in [-90, 90], `lon` in
+/// [-180, 180], `radius_m` a number in [0, 10000] (0 = the server's default).
+/// Returns nullopt with `why` (when not null) naming the field and the problem,
+/// e.g. "vehicle: must be an integer 1..254", "kind: unknown 'foo'",
+/// "lat: not taken by 'hold'". Never throws.
+std::optional<OperatorCommand> ParseWebCommand(const nlohmann::json& body, std::string* why);
+
+}  // namespace fireswarm::server

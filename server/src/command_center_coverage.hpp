@@ -1,0 +1,56 @@
+// The command center's coverage raster (GET /api/coverage): the plan's area in
+// square cells, each seen or not by a drone's camera, from vehicle_state_t.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <vector>
+
+#include "fireswarm/common/camera_model.hpp"
+#include "fireswarm/planner/plan.hpp"
+#include "fireswarm/vehicle_state_t.hpp"
+
+namespace fireswarm::server::internal {
+
+/// The plan's camera: its "camera" member {"hfov_deg", "vfov_deg", "pitch_deg"}.
+struct PlanCamera {
+  common::CameraModel model;  ///< only the fields of view are known
+  double pitch_deg = -90.0;   ///< mount pitch from the horizon, -90 straight down
+};
+
+class CoverageRaster {
+ public:
+  /// The raster of a plan_t's GeoJSON: the area is its features of kind "area"
+  /// less those of kind "no_fly", projected with planner::ParseSearchArea (local
+  /// frame origin: the centre of the area's latitude/longitude bounding box).
+  /// nullptr when the plan has no area feature. Throws std::invalid_argument
+  /// naming the problem for a malformed area or camera.
+  static std::unique_ptr<CoverageRaster> FromPlan(const nlohmann::json& plan);
+
+  /// Marks the cells the vehicle's camera sees now (nothing unless it is airborne
+  /// with a position).
+  void Mark(const vehicle_state_t& message);
+
+  /// {"cell_m", "rows", "cols", "corners": [[lat, lon] x 4: SW, SE, NE, NW],
+  /// "seen": base64 bitset}: cell (row r from the south, column c from the west)
+  /// is bit (k mod 8) of byte k / 8, k = r * cols + c, least significant bit first.
+  nlohmann::json ToJson() const;
+
+  int rows() const { return rows_; }
+  int cols() const { return cols_; }
+
+ private:
+  CoverageRaster(planner::SearchArea area, PlanCamera camera);
+
+  planner::SearchArea area_;
+  PlanCamera camera_;
+  double min_east_m_ = 0.0;
+  double min_north_m_ = 0.0;
+  double cell_m_ = 0.0;
+  int rows_ = 0;
+  int cols_ = 0;
+  std::vector<std::uint8_t> seen_;  // one per cell, row-major from the south-west
+};
+
+}  // namespace fireswarm::server::internal

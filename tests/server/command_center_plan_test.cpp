@@ -1,0 +1,107 @@
+// The plan (GET /api/plan) and the coverage raster over its area (GET /api/coverage).
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "command_center_messages.hpp"
+#include "fireswarm/server/command_center.hpp"
+
+namespace fireswarm::server {
+namespace {
+
+using ::testing::HasSubstr;
+
+// A 200 m (east) x 100 m (north) rectangle at kOrigin, a drone's lanes, a
+// downward camera.
+nlohmann::json PlanJson() {
+  const common::LocalFrame frame(test::kOrigin);
+  nlohmann::json ring = nlohmann::json::array();
+  for (const auto& [e, n] : {std::pair{0.0, 0.0}, std::pair{200.0, 0.0}, std::pair{200.0, 100.0},
+                             std::pair{0.0, 100.0}, std::pair{0.0, 0.0}}) {
+    const common::LatLon p = frame.ToGeodetic({e, n});
+    ring.push_back({p.lon_deg, p.lat_deg});
+  }
+  return {{"type", "FeatureCollection"},
+          {"camera", {{"hfov_deg", 60.0}, {"vfov_deg", 45.0}, {"pitch_deg", -90.0}}},
+          {"features",
+           {{{"type", "Feature"},
+             {"properties", {{"kind", "area"}}},
+             {"geometry", {{"type", "Polygon"}, {"coordinates", {ring}}}}},
+            {{"type", "Feature"},
+             {"properties", {{"kind", "lanes"}, {"vehicle", 1}}},
+             {"geometry", {{"type", "LineString"}, {"coordinates", {ring[0], ring[1]}}}}}}}};
+}
+
+plan_t PlanMessage(const std::string& geojson, std::int64_t utime) {
+  plan_t plan;
+  plan.utime = utime;
+  plan.mission_id = 1;
+  plan.geojson = geojson;
+  return plan;
+}
+
+TEST(CommandCenterPlan, ServesTheLatestPlanAndSaysWhenItChanged) {
+  CommandCenter center({});
+  const nlohmann::json plan = PlanJson();
+  center.OnPlan(PlanMessage(plan.dump(), 1'000'000));
+  EXPECT_EQ(center.Plan(), plan);
+  EXPECT_EQ(center.State()["plan"], (nlohmann::json{{"mission_id", 1}, {"version", 1}}));
+  std::optional<nlohmann::json> delta = center.TakeDelta();
+  ASSERT_TRUE(delta);
+  EXPECT_EQ((*delta)["plan"]["version"], 1);
+  // Re-published unchanged: nothing new but the time.
+  center.OnPlan(PlanMessage(plan.dump(), 5'000'000));
+  delta = center.TakeDelta();
+  ASSERT_TRUE(delta);
+  EXPECT_FALSE(delta->contains("plan"));
+}
+
+TEST(CommandCenterPlan, AMalformedPlanKeepsThePreviousOneAndSaysWhy) {
+  CommandCenter center({});
+  const nlohmann::json plan = PlanJson();
+  center.OnPlan(PlanMessage(plan.dump(), 1));
+  center.OnPlan(PlanMessage("{\"type\": \"Feature", 2));
+  EXPECT_EQ(center.Plan(), plan);
+  const nlohmann::json info = center.State()["plan"];
+  EXPECT_EQ(info["version"], 1);
+  EXPECT_THAT(info["error"].get<std::string>(), HasSubstr("not a GeoJSON FeatureCollection"));
+}
+
+TEST(CommandCenterPlan, APlanWithoutACameraIsShownButHasNoCoverage) {
+  CommandCenter center({});
+  nlohmann::json plan = PlanJson();
+  plan.erase("camera");
+  center.OnPlan(PlanMessage(plan.dump(), 1));
+  EXPECT_EQ(center.Plan(), plan);
+  EXPECT_THAT(center.State()["plan"]["error"].get<std::string>(), HasSubstr("camera"));
+  EXPECT_EQ(center.Coverage()["rows"], 0);
+}
+
+TEST(CommandCenterPlan, CoverageIsARasterOverTheArea) {
+  CommandCenter center({});
+  center.OnPlan(PlanMessage(PlanJson().dump(), 1));
+  const nlohmann::json coverage = center.Coverage();
+  const double cell_m = coverage["cell_m"].get<double>();
+  EXPECT_DOUBLE_EQ(cell_m, 5.0);
+  const int rows = coverage["rows"].get<int>();
+  const int cols = coverage["cols"].get<int>();
+  EXPECT_EQ(rows, 20);
+  EXPECT_EQ(cols, 40);
+  ASSERT_EQ(coverage["corners"].size(), 4U);
+  // SW, SE, NE, NW of the 200 m x 100 m rectangle, to within a few centimetres.
+  const common::LocalFrame frame(test::kOrigin);
+  const std::pair<double, double> expected[] = {{0, 0}, {200, 0}, {200, 100}, {0, 100}};
+  for (std::size_t i = 0; i < 4; ++i) {
+    const common::EastNorth corner = frame.ToLocal(
+        {coverage["corners"][i][0].get<double>(), coverage["corners"][i][1].get<double>()});
+    EXPECT_NEAR(corner.east_m, expected[i].first, 0.05) << i;
+    EXPECT_NEAR(corner.north_m, expected[i].second, 0.05) << i;
+  }
+  const std::size_t bytes = (static_cast<std::size_t>(rows * cols) + 7) / 8;
+  EXPECT_EQ(coverage["seen"].get<std::string>().size(), (bytes + 2) / 3 * 4);
+}
+
+}  // namespace
+}  // namespace fireswarm::server
