@@ -41,6 +41,7 @@
 #include "fireswarm/run/scenario.hpp"
 #include "fireswarm/run/svg_map.hpp"
 #include "fireswarm/server/lcm_bridge.hpp"
+#include "web_feed.hpp"
 #include "web_flags.hpp"
 
 namespace fireswarm::app {
@@ -239,9 +240,15 @@ run::RunResult Fly(const run::Scenario& scenario, RunLcmOutput* lcm, server::Web
   }
   std::optional<Pacer> pacer;
   if (pace) pacer.emplace(*pace);
-  if (lcm != nullptr || web != nullptr || pacer) {
+  std::optional<WebFeed> feed;
+  if (web != nullptr) feed.emplace(*web, "simulated");
+  if (lcm != nullptr || feed || pacer) {
     run_options.on_step = [&](double t_s, server::Server& server) {
       if (lcm != nullptr) lcm->Publish(t_s, server);
+      if (feed) {
+        feed->Step(server, common::FromSeconds(t_s),
+                   kUtimeAtSimZero + std::llround(t_s * common::kMicrosPerSecond), kUtimeAtSimZero);
+      }
       if (pacer) pacer->WaitFor(t_s);
     };
   }

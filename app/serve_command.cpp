@@ -25,6 +25,7 @@
 #include "link_flags.hpp"
 #include "serve_loop.hpp"
 #include "stop_signals.hpp"
+#include "web_feed.hpp"
 #include "web_flags.hpp"
 
 namespace fireswarm::app {
@@ -270,6 +271,13 @@ int RunServe(const std::vector<std::string>& args) {
   run.clock_offset = clock_offset;
   run.duration_s = f.duration_s;
   run.until_complete = f.until_complete;
+  std::optional<WebFeed> feed;
+  if (web) {
+    feed.emplace(*web, "live");
+    run.on_step = [&](Nanos now, std::int64_t utime, std::int64_t utime_at_zero) {
+      feed->Step(server, now, utime, utime_at_zero);
+    };
+  }
   const ServeStop stop = loop.Run(run);
   nlohmann::ordered_json summary = loop.Summary();
   summary["stop"] = ToString(stop);

@@ -6,6 +6,7 @@
 #include <boost/asio/ip/tcp.hpp>
 #include <boost/beast/core.hpp>
 #include <boost/beast/http.hpp>
+#include <boost/beast/websocket.hpp>
 #include <chrono>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -37,17 +38,28 @@ constexpr const char* kScenario =
     "expect:\n"
     "  no_collisions: true\n";
 
-http::response<http::string_body> Get(std::uint16_t port, const std::string& target) {
+http::response<http::string_body> Fetch(std::uint16_t port, http::verb verb,
+                                        const std::string& target, const std::string& body = "",
+                                        const std::string& token = "") {
   asio::io_context io;
   beast::tcp_stream stream(io);
   stream.connect({asio::ip::make_address("127.0.0.1"), port});
-  http::request<http::string_body> request{http::verb::get, target, 11};
+  http::request<http::string_body> request{verb, target, 11};
   request.set(http::field::host, "127.0.0.1");
+  if (!token.empty()) request.set(http::field::authorization, "Bearer " + token);
+  if (verb == http::verb::post) {
+    request.body() = body;
+    request.prepare_payload();
+  }
   http::write(stream, request);
   beast::flat_buffer buffer;
   http::response<http::string_body> response;
   http::read(stream, buffer, response);
   return response;
+}
+
+http::response<http::string_body> Get(std::uint16_t port, const std::string& target) {
+  return Fetch(port, http::verb::get, target);
 }
 
 class WebFlagsTest : public CommandTest {
@@ -70,7 +82,7 @@ TEST_F(WebFlagsTest, RunServesThePageWhileItGoesAtThePaceAsked) {
   std::filesystem::create_directories(dir_ / "web");
   Write("web/index.html", "<title>command center</title>");
   const std::string token = Write("token", "  operator-token\n");
-  constexpr double kPace = 40.0;
+  constexpr double kPace = 10.0;
   FireswarmProcess run({"run", scenario, "--report", PathOf("r.json"), "--http", "127.0.0.1:0",
                         "--web-root", PathOf("web"), "--operator-token-file", token, "--pace",
                         std::to_string(kPace)});
@@ -89,6 +101,29 @@ TEST_F(WebFlagsTest, RunServesThePageWhileItGoesAtThePaceAsked) {
   EXPECT_EQ(index.result(), http::status::ok);
   EXPECT_EQ(index.body(), "<title>command center</title>");
   EXPECT_EQ(Get(*port, "/api/state").result(), http::status::ok);
+  // The stream: the snapshot, then the model's deltas at 5 Hz of simulated time.
+  asio::io_context io;
+  beast::websocket::stream<beast::tcp_stream> ws(io);
+  beast::get_lowest_layer(ws).connect({asio::ip::make_address("127.0.0.1"), *port});
+  ws.handshake("127.0.0.1", "/ws");
+  beast::flat_buffer buffer;
+  ws.read(buffer);
+  EXPECT_EQ(nlohmann::json::parse(beast::buffers_to_string(buffer.data())).at("type"), "snapshot");
+  buffer.consume(buffer.size());
+  ws.read(buffer);
+  const nlohmann::json delta = nlohmann::json::parse(beast::buffers_to_string(buffer.data()));
+  EXPECT_EQ(delta.at("type"), "delta");
+  EXPECT_EQ(nlohmann::json::parse(Get(*port, "/api/state").body()).at("source"), "simulated");
+  // Commands reach the server core, which answers through the feed.
+  const auto bogus =
+      Fetch(*port, http::verb::post, "/api/command", R"({"kind":"bogus"})", "operator-token");
+  EXPECT_EQ(bogus.result(), http::status::bad_request);
+  EXPECT_NE(bogus.body().find("kind"), std::string::npos) << bogus.body();
+  const auto again =
+      Fetch(*port, http::verb::post, "/api/command", R"({"kind":"start"})", "operator-token");
+  EXPECT_EQ(again.result(), http::status::conflict) << "the run started the mission already";
+  EXPECT_EQ(Fetch(*port, http::verb::post, "/api/command", R"({"kind":"start"})", "guess").result(),
+            http::status::unauthorized);
   const RunResult result = run.Finish(deadline);
   EXPECT_EQ(result.exit_code, 0);
   const nlohmann::json report = nlohmann::json::parse(std::ifstream(PathOf("r.json")));
