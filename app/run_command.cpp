@@ -8,6 +8,10 @@
 // every lockstep step, at the bridge's rates in simulated time, every `utime` being
 // kUtimeAtSimZero + simulated microseconds: the same scenario gives the same log.
 // Operator commands arriving on --lcm are not taken (the scenario is the script).
+//
+// The command center (--http, web_flags.hpp): the page and its API served while
+// the run goes; its commands reach the server at the step's simulated time.
+// --pace K holds simulated time to K times the wall clock, so a person can watch.
 #include <unistd.h>
 
 #include <cerrno>
@@ -19,10 +23,12 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
 #include <system_error>
+#include <thread>
 #include <vector>
 
 #include "cli.hpp"
@@ -35,6 +41,8 @@
 #include "fireswarm/run/scenario.hpp"
 #include "fireswarm/run/svg_map.hpp"
 #include "fireswarm/server/lcm_bridge.hpp"
+#include "web_feed.hpp"
+#include "web_flags.hpp"
 
 namespace fireswarm::app {
 namespace {
@@ -68,6 +76,23 @@ struct Flags {
   std::string svg;
   std::string log;      ///< LCM event log, empty = none
   std::string lcm_url;  ///< LCM provider to publish on, empty = none
+  WebFlags web;
+  std::optional<double> pace;  ///< simulated s per wall s
+};
+
+// --pace K: simulated time t is due at wall_start + t / K; a step ahead of that
+// waits for it.
+class Pacer {
+ public:
+  explicit Pacer(double pace) : pace_(pace), start_(std::chrono::steady_clock::now()) {}
+  void WaitFor(double t_s) const {
+    std::this_thread::sleep_until(start_ + std::chrono::duration_cast<std::chrono::nanoseconds>(
+                                               std::chrono::duration<double>(t_s / pace_)));
+  }
+
+ private:
+  double pace_;
+  std::chrono::steady_clock::time_point start_;
 };
 
 // Bad flags end the command before the scenario is read or anything is written.
@@ -77,6 +102,10 @@ void CheckFlags(const Flags& f, const po::variables_map& values) {
     if (values.count(flag) != 0 && path->empty()) {
       throw UsageError(std::string("fireswarm run: --") + flag + " needs a file name");
     }
+  }
+  CheckWebFlags(kName, f.web);
+  if (f.pace && !(*f.pace > 0.0 && std::isfinite(*f.pace))) {
+    ThrowBadFlag(kName, "pace", "> 0 (simulated s per wall s)", FlagText(*f.pace));
   }
   if (values.count("lcm") != 0 && f.lcm_url.empty()) {
     throw UsageError("fireswarm run: --lcm needs a URL, e.g. udpm://239.255.76.67:7667?ttl=0");
@@ -193,9 +222,10 @@ void PrintSummary(const run::RunResult& result) {
   }
 }
 
-// Flies the scenario, publishing on LCM when `lcm` is given; a progress line on
-// a terminal.
-run::RunResult Fly(const run::Scenario& scenario, RunLcmOutput* lcm) {
+// Flies the scenario, publishing on LCM when `lcm` is given and serving the page
+// when `web` is; paced when `pace` is; a progress line on a terminal.
+run::RunResult Fly(const run::Scenario& scenario, RunLcmOutput* lcm, server::WebServer* web,
+                   std::optional<double> pace) {
   run::RunOptions run_options;
   run::RunProgress last;
   std::chrono::steady_clock::time_point drawn{};
@@ -208,9 +238,18 @@ run::RunResult Fly(const run::Scenario& scenario, RunLcmOutput* lcm) {
       DrawProgress(progress);
     };
   }
-  if (lcm != nullptr) {
-    run_options.on_step = [lcm](double t_s, const server::Server& server) {
-      lcm->Publish(t_s, server);
+  std::optional<Pacer> pacer;
+  if (pace) pacer.emplace(*pace);
+  std::optional<WebFeed> feed;
+  if (web != nullptr) feed.emplace(*web, "simulated");
+  if (lcm != nullptr || feed || pacer) {
+    run_options.on_step = [&](double t_s, server::Server& server) {
+      if (lcm != nullptr) lcm->Publish(t_s, server);
+      if (feed) {
+        feed->Step(server, common::FromSeconds(t_s),
+                   kUtimeAtSimZero + std::llround(t_s * common::kMicrosPerSecond), kUtimeAtSimZero);
+      }
+      if (pacer) pacer->WaitFor(t_s);
     };
   }
   run::RunResult result = run::RunScenario(scenario, run_options);
@@ -234,13 +273,16 @@ int RunRun(const std::vector<std::string>& args) {
       "write an LCM log (for lcm-logplayer) of what the server publishes; utime = simulated us");
   add("lcm", po::value(&f.lcm_url)->value_name("URL"),
       "publish the same on LCM as the run goes (memq://, udpm://239.255.76.67:7667?ttl=0, ...)");
+  AddWebOptions(options, f.web);
+  add("pace", po::value<double>()->notifier([&f](double v) { f.pace = v; })->value_name("K"),
+      "run simulated time at K times the wall clock (e.g. 1 to watch a run live on --http)");
   add("scenario", po::value(&f.scenario)->required(), "the scenario file (YAML)");
   po::positional_options_description positional;
   positional.add("scenario", 1);
   po::variables_map values;
   if (!ParseCommandLine(kName,
                         "SCENARIO.yaml [--report out.json] [--junit out.xml] [--svg map.svg] "
-                        "[--log out.lcmlog] [--lcm URL]",
+                        "[--log out.lcmlog] [--lcm URL] [--http HOST:PORT [--pace K]]",
                         options, positional, args, values)) {
     return kExitOk;
   }
@@ -252,7 +294,8 @@ int RunRun(const std::vector<std::string>& args) {
   try {
     scenario = run::LoadScenario(f.scenario);
     if (!f.log.empty() || !f.lcm_url.empty()) lcm.emplace(f.log, f.lcm_url);
-    result = Fly(scenario, lcm ? &*lcm : nullptr);
+    const std::unique_ptr<server::WebServer> web = StartWebServer(kName, f.web, false);
+    result = Fly(scenario, lcm ? &*lcm : nullptr, web.get(), f.pace);
   } catch (const run::ScenarioError& e) {
     throw UsageError(std::string("fireswarm run: ") + e.what());
   }

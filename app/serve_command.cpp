@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <iostream>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -24,6 +25,8 @@
 #include "link_flags.hpp"
 #include "serve_loop.hpp"
 #include "stop_signals.hpp"
+#include "web_feed.hpp"
+#include "web_flags.hpp"
 
 namespace fireswarm::app {
 namespace {
@@ -54,6 +57,7 @@ struct Flags {
   bool start = false;
   std::optional<double> duration_s;
   bool until_complete = false;
+  WebFlags web;
 };
 
 [[noreturn]] void BadFlag(const std::string& flag, const std::string& requirement,
@@ -80,10 +84,11 @@ void CheckFlags(const Flags& f, const po::variables_map& values) {
     BadFlag("telemetry-hz", "in (0, 50]", FlagText(f.telemetry_hz));
   }
   if (f.duration_s && !(*f.duration_s > 0.0)) BadFlag("duration-s", "> 0", FlagText(*f.duration_s));
-  if (!f.start && f.lcm_url.empty()) {
+  CheckWebFlags(kName, f.web);
+  if (!f.start && f.lcm_url.empty() && f.web.http.empty()) {
     throw UsageError(
-        "fireswarm serve: give --start, or --lcm URL to wait for an operator's START (otherwise "
-        "the mission would never start)");
+        "fireswarm serve: give --start, or --lcm URL or --http HOST:PORT to wait for an "
+        "operator's START (otherwise the mission would never start)");
   }
 }
 
@@ -220,6 +225,7 @@ po::options_description OptionsFor(Flags& f) {
       "stop after this much wall time, s (default: run until SIGINT or SIGTERM)");
   add("until-complete", po::bool_switch(&f.until_complete),
       "stop once the mission is complete: exit 0 (1 when aborted or --duration-s passed first)");
+  AddWebOptions(options, f.web);
   return options;
 }
 
@@ -265,6 +271,7 @@ int RunServe(const std::vector<std::string>& args) {
   const OpenedLink link = OpenLink(f.link);
   std::optional<server::LcmBridge> bridge = BridgeFor(f);
   ServeLoop loop(server, *link.link, journal ? &*journal : nullptr, bridge ? &*bridge : nullptr);
+  const std::unique_ptr<server::WebServer> web = StartWebServer(kName, f.web, false);
 
   CompleteSetup(f, area, clock_offset, server);
   loop.FlushJournal();
@@ -274,6 +281,13 @@ int RunServe(const std::vector<std::string>& args) {
   run.clock_offset = clock_offset;
   run.duration_s = f.duration_s;
   run.until_complete = f.until_complete;
+  std::optional<WebFeed> feed;
+  if (web) {
+    feed.emplace(*web, "live");
+    run.on_step = [&](Nanos now, std::int64_t utime, std::int64_t utime_at_zero) {
+      feed->Step(server, now, utime, utime_at_zero);
+    };
+  }
   const ServeStop stop = loop.Run(run);
   nlohmann::ordered_json summary = loop.Summary();
   summary["stop"] = ToString(stop);

@@ -137,6 +137,10 @@ ServeStop ServeLoop::Run(const ServeOptions& options) {
     FlushJournal();  // durable before anything else happens
     if (bridge_ != nullptr)
       bridge_->Publish(server_, common::ToSeconds(t), UnixMicros(), utime_at_zero);
+    if (options.on_step) {
+      options.on_step(t, UnixMicros(), utime_at_zero);
+      FlushJournal();  // what commands from the page made the server journal
+    }
     clock_s_ = common::ToSeconds(t);
 
     const server::MissionState state = server_.state();
@@ -153,7 +157,8 @@ ServeStop ServeLoop::Run(const ServeOptions& options) {
       stop = ServeStop::kDuration;
       break;
     }
-    Nanos next = std::min(server_.NextWakeup(), now() + kMaxWait);
+    Nanos next = std::min(server_.NextWakeup(),
+                          now() + std::min(kMaxWait, common::FromSeconds(options.max_wait_s)));
     if (bridge_ != nullptr) {
       next = std::min(next, common::FromSeconds(std::min(bridge_->NextPublishS(), 1e9)));
     }

@@ -10,6 +10,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -30,6 +31,12 @@ struct ServeOptions {
   common::Nanos clock_offset{0};     ///< mission clock when the loop starts
   std::optional<double> duration_s;  ///< stop after this much wall time, s
   bool until_complete = false;       ///< stop once the mission is complete or aborted
+  /// Called after every step with the mission clock and the LCM utime of now and
+  /// of mission time 0 (the web feed); it may hand the server operator commands.
+  /// Empty: none.
+  std::function<void(common::Nanos now, std::int64_t utime, std::int64_t utime_at_zero)> on_step;
+  /// The loop wakes at least this often (the web feed's period), s.
+  double max_wait_s = 0.05;
 };
 
 /// Why the loop stopped.

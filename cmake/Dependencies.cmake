@@ -9,6 +9,9 @@ find_package(box2d 2.4 REQUIRED CONFIG)
 find_package(nlohmann_json 3 REQUIRED CONFIG)
 find_package(yaml-cpp REQUIRED CONFIG)
 find_package(spdlog REQUIRED CONFIG)
+# The command center's web adapter: TLS (Boost.Asio SSL over OpenSSL), MBTiles map tiles.
+find_package(OpenSSL 3 REQUIRED)
+find_package(SQLite3 REQUIRED)
 
 # OMPL: variables only; ompl.pc would inject -std=c++14, so it is not used.
 find_package(ompl 1.5 REQUIRED)

@@ -13,6 +13,7 @@ PACKAGES=(
   libboost-serialization-dev libboost-filesystem-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   nlohmann-json3-dev libyaml-cpp-dev libspdlog-dev
+  libssl-dev libsqlite3-dev
   iproute2
 )
 

@@ -166,6 +166,7 @@ class Lockstep {
   const sim2d::World& world() const { return simulation_.world(); }
   const sim2d::Simulation& simulation() const { return simulation_; }
   const server::Server& server() const { return server_; }
+  server::Server& server() { return server_; }
   const radio::SharedChannel& channel() const { return radio_.channel(); }
   const std::vector<std::unique_ptr<agents::Vehicle>>& vehicles() const { return vehicles_; }
 

@@ -35,8 +35,10 @@ struct RunOptions {
   double progress_interval_s = 5.0;
   /// Called after every lockstep step with the simulated time reached, s, and the
   /// server as it stands then (what an adapter publishes, e.g. on LCM); empty: none.
+  /// It may hand the server operator commands (Server::Handle at t_s), which then
+  /// take effect from the next step on, as a command arriving then would.
   /// An exception it throws ends the run and leaves RunScenario.
-  std::function<void(double t_s, const server::Server& server)> on_step;
+  std::function<void(double t_s, server::Server& server)> on_step;
   /// After the mission is complete, the run goes on at most this long for fire
   /// reports still queued on the vehicles to reach the server, s.
   double drain_s = 30.0;

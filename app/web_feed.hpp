@@ -1,0 +1,46 @@
+// The glue between the server core and the command center's web server: at 5 Hz
+// of the caller's clock (simulated for `run`, the mission clock for `serve`) the
+// server is converted into its LCM messages (lcm_bridge.hpp's pure conversions),
+// fed to the page's model (server::CommandCenter), and the model served
+// (SetDocuments) and its delta broadcast; at every step the page's commands are
+// parsed (ParseWebCommand) and handed to Server::Handle at that time, the same
+// entry point as LCM's operator commands, and answered: 202 queued, 400 or 409
+// with why.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "fireswarm/common/time.hpp"
+#include "fireswarm/server/command_center.hpp"
+#include "fireswarm/server/lcm_bridge.hpp"
+#include "fireswarm/server/server.hpp"
+#include "fireswarm/server/web_server.hpp"
+
+namespace fireswarm::app {
+
+class WebFeed {
+ public:
+  /// `web` must outlive the feed. `source`: "live" or "simulated" (the state's).
+  WebFeed(server::WebServer& web, const std::string& source);
+
+  /// Takes the page's commands and, once 1/5 s of the clock passed since the last
+  /// update, updates and serves the model. `now`: the server's clock; `utime`,
+  /// `utime_at_zero`: the LCM utime of now and of the clock's zero (docs/lcm.md).
+  void Step(server::Server& server, common::Nanos now, std::int64_t utime,
+            std::int64_t utime_at_zero);
+
+ private:
+  void TakeCommands(server::Server& server, common::Nanos now);
+  void Update(const server::Server& server, double now_s, std::int64_t utime,
+              std::int64_t utime_at_zero);
+
+  server::WebServer& web_;
+  server::CommandCenter model_;
+  server::RadioCounters radio_counters_;
+  double next_update_s_ = 0.0;
+  double next_radio_s_ = 0.0;
+  std::uint64_t refused_noted_ = 0;  // web_.refused() already counted in the model
+};
+
+}  // namespace fireswarm::app

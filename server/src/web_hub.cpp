@@ -1,0 +1,155 @@
+#include "web_hub.hpp"
+
+#include <algorithm>
+#include <iostream>
+#include <utility>
+
+namespace fireswarm::server::web {
+namespace {
+
+Text EmptyObject() {
+  return std::make_shared<const std::string>("{}");
+}
+
+// Takes everything from `queue` once it has something or `wait` passed.
+template <class T>
+std::vector<T> TakeAll(std::unique_lock<std::mutex>& lock, std::condition_variable& arrived,
+                       std::deque<T>& queue, std::chrono::milliseconds wait) {
+  if (queue.empty() && wait.count() > 0) {
+    arrived.wait_for(lock, wait, [&] { return !queue.empty(); });
+  }
+  std::vector<T> taken(std::make_move_iterator(queue.begin()),
+                       std::make_move_iterator(queue.end()));
+  queue.clear();
+  return taken;
+}
+
+}  // namespace
+
+Hub::Hub(WebServerConfig config, std::unique_ptr<MbTiles> tiles)
+    : config_(std::move(config)),
+      tiles_(std::move(tiles)),
+      documents_{EmptyObject(), EmptyObject(), EmptyObject()} {}
+
+Documents Hub::documents() const {
+  const std::lock_guard lock(mutex_);
+  return documents_;
+}
+
+void Hub::SetDocuments(Text state, Text plan, Text coverage) {
+  const std::lock_guard lock(mutex_);
+  documents_ = {std::move(state), std::move(plan), std::move(coverage)};
+}
+
+std::uint64_t Hub::QueueCommand(nlohmann::json body, std::string peer, Responder responder) {
+  std::uint64_t id = 0;
+  {
+    const std::lock_guard lock(mutex_);
+    id = next_id_++;
+    commands_.push_back({id, std::move(body), std::move(peer)});
+    open_.emplace(id, std::move(responder));
+  }
+  arrived_.notify_all();
+  return id;
+}
+
+std::vector<PendingCommand> Hub::TakeCommands(std::chrono::milliseconds wait) {
+  std::unique_lock lock(mutex_);
+  return TakeAll(lock, arrived_, commands_, wait);
+}
+
+bool Hub::Answer(std::uint64_t id, int http_status, std::string json_body) {
+  Responder responder;
+  {
+    const std::lock_guard lock(mutex_);
+    const auto open = open_.find(id);
+    if (open == open_.end()) return false;
+    responder = std::move(open->second);
+    open_.erase(open);
+  }
+  responder(http_status, std::move(json_body));
+  return true;
+}
+
+bool Hub::Expire(std::uint64_t id) {
+  Responder dropped;  // destroyed outside the lock (it holds the session)
+  const std::lock_guard lock(mutex_);
+  const auto open = open_.find(id);
+  if (open == open_.end()) return false;
+  dropped = std::move(open->second);
+  open_.erase(open);
+  std::erase_if(commands_, [id](const PendingCommand& c) { return c.id == id; });
+  return true;
+}
+
+void Hub::Refuse(const std::string& peer, const std::string& reason) {
+  ++refused_;
+  std::cerr << "web: refused a command from " << peer << ": " << reason << std::endl;
+}
+
+std::uint64_t Hub::AddClient(std::weak_ptr<WsClient> client, Text* state) {
+  const std::lock_guard lock(mutex_);
+  const std::uint64_t id = next_id_++;
+  clients_.emplace(id, std::move(client));
+  *state = documents_.state;
+  return id;
+}
+
+void Hub::RemoveClient(std::uint64_t id) {
+  const std::lock_guard lock(mutex_);
+  clients_.erase(id);
+}
+
+void Hub::Broadcast(const Text& message) {
+  std::vector<std::shared_ptr<WsClient>> clients;
+  {
+    const std::lock_guard lock(mutex_);
+    for (const auto& [id, client] : clients_) {
+      if (auto locked = client.lock()) clients.push_back(std::move(locked));
+    }
+  }
+  for (const auto& client : clients) client->Send(message);
+}
+
+bool Hub::SendTo(std::uint64_t id, const Text& message) {
+  std::shared_ptr<WsClient> client;
+  {
+    const std::lock_guard lock(mutex_);
+    const auto found = clients_.find(id);
+    if (found != clients_.end()) client = found->second.lock();
+  }
+  if (!client) return false;
+  client->Send(message);
+  return true;
+}
+
+std::size_t Hub::clients() const {
+  const std::lock_guard lock(mutex_);
+  return clients_.size();
+}
+
+void Hub::PushClientMessage(ClientMessage message) {
+  {
+    const std::lock_guard lock(mutex_);
+    client_messages_.push_back(std::move(message));
+  }
+  arrived_.notify_all();
+}
+
+std::vector<ClientMessage> Hub::TakeClientMessages(std::chrono::milliseconds wait) {
+  std::unique_lock lock(mutex_);
+  return TakeAll(lock, arrived_, client_messages_, wait);
+}
+
+void Hub::DropAll() {
+  std::map<std::uint64_t, Responder> open;
+  std::map<std::uint64_t, std::weak_ptr<WsClient>> clients;
+  {
+    const std::lock_guard lock(mutex_);
+    open.swap(open_);
+    clients.swap(clients_);
+    commands_.clear();
+  }
+}
+
+}  // namespace fireswarm::server::web

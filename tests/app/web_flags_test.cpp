@@ -1,0 +1,163 @@
+// The command center's flags (app/web_flags.cpp) end to end through `fireswarm
+// run`: the page served while a paced run goes, the listening line, and bad web
+// flags refused with exit 2 naming the flag or file.
+#include <sys/stat.h>
+
+#include <boost/asio/ip/tcp.hpp>
+#include <boost/beast/core.hpp>
+#include <boost/beast/http.hpp>
+#include <boost/beast/websocket.hpp>
+#include <chrono>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <regex>
+#include <string>
+
+#include "app/fireswarm_process.hpp"
+#include "app/run_fireswarm.hpp"
+
+namespace fireswarm::app {
+namespace {
+
+namespace asio = boost::asio;
+namespace beast = boost::beast;
+namespace http = beast::http;
+
+// 800 m x 500 m, two drones, one fire, 30 simulated s.
+constexpr const char* kScenario =
+    "name: tiny\n"
+    "seed: 7\n"
+    "duration_s: 30\n"
+    "area:\n"
+    "  polygon: [[7.0, 45.0], [7.010146, 45.0], [7.010146, 45.0045], [7.0, 45.0045]]\n"
+    "fleet:\n"
+    "  count: 2\n"
+    "  launch: {lat: 44.9995, lon: 7.005}\n"
+    "fires:\n"
+    "  - {lat: 45.00230, lon: 7.00480}\n"
+    "expect:\n"
+    "  no_collisions: true\n";
+
+http::response<http::string_body> Fetch(std::uint16_t port, http::verb verb,
+                                        const std::string& target, const std::string& body = "",
+                                        const std::string& token = "") {
+  asio::io_context io;
+  beast::tcp_stream stream(io);
+  stream.connect({asio::ip::make_address("127.0.0.1"), port});
+  http::request<http::string_body> request{verb, target, 11};
+  request.set(http::field::host, "127.0.0.1");
+  if (!token.empty()) request.set(http::field::authorization, "Bearer " + token);
+  if (verb == http::verb::post) {
+    request.body() = body;
+    request.prepare_payload();
+  }
+  http::write(stream, request);
+  beast::flat_buffer buffer;
+  http::response<http::string_body> response;
+  http::read(stream, buffer, response);
+  return response;
+}
+
+http::response<http::string_body> Get(std::uint16_t port, const std::string& target) {
+  return Fetch(port, http::verb::get, target);
+}
+
+class WebFlagsTest : public CommandTest {
+ protected:
+  std::string Write(const std::string& name, const std::string& text, int mode = 0600) const {
+    std::ofstream(PathOf(name)) << text;
+    ::chmod(PathOf(name).c_str(), static_cast<mode_t>(mode));
+    return PathOf(name);
+  }
+  static bool Mentions(const RunResult& result, const std::string& text) {
+    for (const std::string& line : result.lines) {
+      if (line.find(text) != std::string::npos) return true;
+    }
+    return false;
+  }
+};
+
+TEST_F(WebFlagsTest, RunServesThePageWhileItGoesAtThePaceAsked) {
+  const std::string scenario = Write("tiny.yaml", kScenario);
+  std::filesystem::create_directories(dir_ / "web");
+  Write("web/index.html", "<title>command center</title>");
+  const std::string token = Write("token", "  operator-token\n");
+  constexpr double kPace = 10.0;
+  FireswarmProcess run({"run", scenario, "--report", PathOf("r.json"), "--http", "127.0.0.1:0",
+                        "--web-root", PathOf("web"), "--operator-token-file", token, "--pace",
+                        std::to_string(kPace)});
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  const std::regex listening(R"(http: listening on http://127\.0\.0\.1:(\d+)/)");
+  std::optional<std::uint16_t> port;
+  while (auto line = run.ReadLine(deadline)) {
+    std::smatch match;
+    if (std::regex_match(*line, match, listening)) {
+      port = static_cast<std::uint16_t>(std::stoi(match[1]));
+      break;
+    }
+  }
+  ASSERT_TRUE(port) << "no listening line";
+  const auto index = Get(*port, "/");
+  EXPECT_EQ(index.result(), http::status::ok);
+  EXPECT_EQ(index.body(), "<title>command center</title>");
+  EXPECT_EQ(Get(*port, "/api/state").result(), http::status::ok);
+  // The stream: the snapshot, then the model's deltas at 5 Hz of simulated time.
+  asio::io_context io;
+  beast::websocket::stream<beast::tcp_stream> ws(io);
+  beast::get_lowest_layer(ws).connect({asio::ip::make_address("127.0.0.1"), *port});
+  ws.handshake("127.0.0.1", "/ws");
+  beast::flat_buffer buffer;
+  ws.read(buffer);
+  EXPECT_EQ(nlohmann::json::parse(beast::buffers_to_string(buffer.data())).at("type"), "snapshot");
+  buffer.consume(buffer.size());
+  ws.read(buffer);
+  const nlohmann::json delta = nlohmann::json::parse(beast::buffers_to_string(buffer.data()));
+  EXPECT_EQ(delta.at("type"), "delta");
+  EXPECT_EQ(nlohmann::json::parse(Get(*port, "/api/state").body()).at("source"), "simulated");
+  // Commands reach the server core, which answers through the feed.
+  const auto bogus =
+      Fetch(*port, http::verb::post, "/api/command", R"({"kind":"bogus"})", "operator-token");
+  EXPECT_EQ(bogus.result(), http::status::bad_request);
+  EXPECT_NE(bogus.body().find("kind"), std::string::npos) << bogus.body();
+  const auto again =
+      Fetch(*port, http::verb::post, "/api/command", R"({"kind":"start"})", "operator-token");
+  EXPECT_EQ(again.result(), http::status::conflict) << "the run started the mission already";
+  EXPECT_EQ(Fetch(*port, http::verb::post, "/api/command", R"({"kind":"start"})", "guess").result(),
+            http::status::unauthorized);
+  const RunResult result = run.Finish(deadline);
+  EXPECT_EQ(result.exit_code, 0);
+  const nlohmann::json report = nlohmann::json::parse(std::ifstream(PathOf("r.json")));
+  // Paced: simulated time never ran ahead of K times the wall clock.
+  EXPECT_GE(report.at("wall_seconds").get<double>(),
+            report.at("sim_seconds").get<double>() / kPace * 0.99);
+}
+
+TEST_F(WebFlagsTest, RefusesBadWebFlagsNamingThem) {
+  const std::string scenario = Write("tiny.yaml", kScenario);
+  std::filesystem::create_directories(dir_ / "web");
+  const std::string open_token = Write("open-token", "secret\n", 0644);
+  const std::string empty_token = Write("empty-token", " \n");
+  const std::string web = " --web-root " + PathOf("web");
+  const struct {
+    std::string args;
+    std::string named;
+  } cases[] = {
+      {"--http 127.0.0.1:0 --operator-token-file " + open_token + web, open_token},
+      {"--http 127.0.0.1:0 --operator-token-file " + empty_token + web, empty_token},
+      {"--http 127.0.0.1:0 --operator-token-file " + PathOf("none") + web, PathOf("none")},
+      {"--http 0.0.0.0:0" + web, "--http"},
+      {"--http 127.0.0.1" + web, "--http"},
+      {"--http 127.0.0.1:0 --web-root " + PathOf("nowhere"), "--web-root"},
+      {"--tls-cert c.pem", "--tls-cert"},
+      {"--pace 0", "--pace"},
+      {"--pace -2 --http 127.0.0.1:0" + web, "--pace"},
+  };
+  for (const auto& c : cases) {
+    const RunResult result = RunFireswarm("run " + scenario + " " + c.args);
+    EXPECT_EQ(result.exit_code, 2) << c.args;
+    EXPECT_TRUE(Mentions(result, c.named)) << c.args;
+  }
+}
+
+}  // namespace
+}  // namespace fireswarm::app
