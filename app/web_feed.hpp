@@ -2,8 +2,9 @@
 // of the caller's clock (simulated for `run`, the mission clock for `serve`) the
 // server is converted into its LCM messages (lcm_bridge.hpp's pure conversions),
 // fed to the page's model (server::CommandCenter), and the model served
-// (SetDocuments) and its delta broadcast; at every step the page's commands are
-// parsed (ParseWebCommand) and handed to Server::Handle at that time, the same
+// (SetDocuments) and its delta broadcast (the plan every 5 s as LCM's plan_t,
+// each command's status when it changed, the coverage raster every second); at every step the
+// page's commands are parsed (ParseWebCommand) and handed to Server::Handle at that time, the same
 // entry point as LCM's operator commands, and answered: 202 queued, 400 or 409
 // with why.
 #pragma once
@@ -40,7 +41,11 @@ class WebFeed {
   server::RadioCounters radio_counters_;
   double next_update_s_ = 0.0;
   double next_radio_s_ = 0.0;
-  std::uint64_t refused_noted_ = 0;  // web_.refused() already counted in the model
+  double next_plan_s_ = 0.0;
+  double next_coverage_s_ = 0.0;
+  std::string coverage_document_ = "{}";
+  std::uint64_t commands_version_ = 0;  // the server's commands_version() last fed
+  std::uint64_t refused_noted_ = 0;     // web_.refused() already counted in the model
 };
 
 }  // namespace fireswarm::app

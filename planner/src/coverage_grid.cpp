@@ -105,6 +105,12 @@ void CoverageGrid::Mark(const Eigen::Vector2d& position_en_m, double heading_rad
   }
 }
 
+bool CoverageGrid::Seen(int row, int col) const {
+  if (row < 0 || row >= rows_ || col < 0 || col >= cols_) return false;
+  return state_[static_cast<std::size_t>(row) * static_cast<std::size_t>(cols_) +
+                static_cast<std::size_t>(col)] == kSeen;
+}
+
 double CoverageGrid::Fraction() const {
   return searchable_ == 0 ? 0.0 : static_cast<double>(seen_) / static_cast<double>(searchable_);
 }

@@ -8,16 +8,12 @@
 #include <string>
 
 #include "base64.hpp"
+#include "fireswarm/common/angles.hpp"
 #include "fireswarm/planner/area_io.hpp"
 
 namespace fireswarm::server::internal {
 
 namespace {
-
-// As run/'s scoring grid: 5 m cells, coarser when the area would need more than
-// kMaxCells of them.
-constexpr double kCellM = 5.0;
-constexpr double kMaxCells = 2'000'000.0;
 
 double CameraNumber(const nlohmann::json& camera, const char* key, double low, double high) {
   const auto found = camera.find(key);
@@ -78,44 +74,31 @@ std::unique_ptr<CoverageRaster> CoverageRaster::FromPlan(const nlohmann::json& p
 }
 
 CoverageRaster::CoverageRaster(planner::SearchArea area, PlanCamera camera)
-    : area_(std::move(area)), camera_(camera) {
-  // The outer rings' bounds (boost::geometry::envelope draws GCC 12's
-  // maybe-uninitialized false positive, see planner/CMakeLists.txt).
-  double max_east_m = -std::numeric_limits<double>::infinity();
-  double max_north_m = max_east_m;
-  min_east_m_ = -max_east_m;
-  min_north_m_ = -max_east_m;
-  for (const planner::Polygon& polygon : area_.area) {
-    for (const planner::Point& point : polygon.outer()) {
-      min_east_m_ = std::min(min_east_m_, point.x());
-      max_east_m = std::max(max_east_m, point.x());
-      min_north_m_ = std::min(min_north_m_, point.y());
-      max_north_m = std::max(max_north_m, point.y());
-    }
-  }
-  const double width_m = max_east_m - min_east_m_;
-  const double height_m = max_north_m - min_north_m_;
-  cell_m_ = std::max(kCellM, std::sqrt(width_m * height_m / kMaxCells));
-  // A side that projection made millimetres longer than whole cells gets no
-  // extra row or column.
-  constexpr double kCellFractionIgnored = 1e-3;
-  cols_ = std::max(1, static_cast<int>(std::ceil(width_m / cell_m_ - kCellFractionIgnored)));
-  rows_ = std::max(1, static_cast<int>(std::ceil(height_m / cell_m_ - kCellFractionIgnored)));
-  seen_.assign(static_cast<std::size_t>(rows_) * static_cast<std::size_t>(cols_), 0);
-}
+    : area_(std::move(area)), camera_(camera), grid_(area_.area, area_.no_fly) {}
 
-void CoverageRaster::Mark(const vehicle_state_t& /*message*/) {
-  // The camera footprint is planner::CoverageGrid's (moving from run/ to planner/);
-  // until it is there, no cell is marked seen.
+void CoverageRaster::Mark(const vehicle_state_t& message) {
+  // Not heard yet, or no GPS fix: no position to see from.
+  if (message.telemetry_age_s < 0.0 || !message.has_position) return;
+  const common::EastNorth position = area_.frame.ToLocal({message.lat_deg, message.lon_deg});
+  grid_.Mark(Eigen::Vector2d(position.east_m, position.north_m), message.heading_deg * common::kRadPerDeg, message.altitude_m,
+             camera_.model, camera_.pitch_deg);
 }
 
 nlohmann::json CoverageRaster::ToJson() const {
-  std::vector<std::uint8_t> bits((seen_.size() + 7) / 8, 0);
-  for (std::size_t k = 0; k < seen_.size(); ++k) {
-    if (seen_[k] != 0) bits[k / 8] |= static_cast<std::uint8_t>(1U << (k % 8));
+  const int rows = grid_.rows();
+  const int cols = grid_.cols();
+  const double cell_m = grid_.cell_m();
+  std::vector<std::uint8_t> bits(
+      (static_cast<std::size_t>(rows) * static_cast<std::size_t>(cols) + 7) / 8, 0);
+  std::size_t k = 0;
+  for (int r = 0; r < rows; ++r) {
+    for (int c = 0; c < cols; ++c, ++k) {
+      if (grid_.Seen(r, c)) bits[k / 8] |= static_cast<std::uint8_t>(1U << (k % 8));
+    }
   }
-  const double east_m[] = {min_east_m_, min_east_m_ + cols_ * cell_m_};
-  const double north_m[] = {min_north_m_, min_north_m_ + rows_ * cell_m_};
+  const Eigen::Vector2d south_west = grid_.south_west_en_m();
+  const double east_m[] = {south_west.x(), south_west.x() + cols * cell_m};
+  const double north_m[] = {south_west.y(), south_west.y() + rows * cell_m};
   nlohmann::json corners = nlohmann::json::array();
   // SW, SE, NE, NW.
   for (const auto& [e, n] : {std::pair{east_m[0], north_m[0]}, std::pair{east_m[1], north_m[0]},
@@ -123,9 +106,9 @@ nlohmann::json CoverageRaster::ToJson() const {
     const common::LatLon corner = area_.frame.ToGeodetic({e, n});
     corners.push_back({corner.lat_deg, corner.lon_deg});
   }
-  return {{"cell_m", cell_m_},
-          {"rows", rows_},
-          {"cols", cols_},
+  return {{"cell_m", cell_m},
+          {"rows", rows},
+          {"cols", cols},
           {"corners", std::move(corners)},
           {"seen", Base64Encode(bits)}};
 }

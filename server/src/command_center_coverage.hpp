@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "fireswarm/common/camera_model.hpp"
+#include "fireswarm/planner/coverage_grid.hpp"
 #include "fireswarm/planner/plan.hpp"
 #include "fireswarm/vehicle_state_t.hpp"
 
@@ -37,20 +38,17 @@ class CoverageRaster {
   /// is bit (k mod 8) of byte k / 8, k = r * cols + c, least significant bit first.
   nlohmann::json ToJson() const;
 
-  int rows() const { return rows_; }
-  int cols() const { return cols_; }
+  int rows() const { return grid_.rows(); }
+  int cols() const { return grid_.cols(); }
 
  private:
   CoverageRaster(planner::SearchArea area, PlanCamera camera);
 
   planner::SearchArea area_;
   PlanCamera camera_;
-  double min_east_m_ = 0.0;
-  double min_north_m_ = 0.0;
-  double cell_m_ = 0.0;
-  int rows_ = 0;
-  int cols_ = 0;
-  std::vector<std::uint8_t> seen_;  // one per cell, row-major from the south-west
+  // The same raster and footprint the server's coverage_fraction and a run's
+  // report count (planner::CoverageGrid), here marked from vehicle_state_t.
+  planner::CoverageGrid grid_;
 };
 
 }  // namespace fireswarm::server::internal

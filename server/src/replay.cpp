@@ -14,10 +14,6 @@ namespace fireswarm::server {
 
 namespace {
 
-// The channels lcm_bridge.hpp does not name yet (the server publishes them next).
-constexpr const char* kReplayPlanChannel = "FIRESWARM_PLAN";
-constexpr const char* kReplayCommandStatusChannel = "FIRESWARM_COMMAND_STATUS";
-
 [[noreturn]] void Fail(const std::filesystem::path& path, const std::string& problem) {
   throw std::runtime_error(path.string() + ": " + problem);
 }
@@ -41,8 +37,8 @@ std::optional<ReplayEvent> DecodeEvent(const lcm::LogEvent& event,
   if (channel == kFireTracksChannel) return Decode<fire_track_list_t>(event, path);
   if (channel == kMissionStatusChannel) return Decode<mission_status_t>(event, path);
   if (channel == kRadioStatsChannel) return Decode<radio_stats_t>(event, path);
-  if (channel == kReplayPlanChannel) return Decode<plan_t>(event, path);
-  if (channel == kReplayCommandStatusChannel) return Decode<command_status_t>(event, path);
+  if (channel == kPlanChannel) return Decode<plan_t>(event, path);
+  if (channel == kCommandStatusChannel) return Decode<command_status_t>(event, path);
   return std::nullopt;
 }
 

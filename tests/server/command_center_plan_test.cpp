@@ -103,5 +103,26 @@ TEST(CommandCenterPlan, CoverageIsARasterOverTheArea) {
   EXPECT_EQ(coverage["seen"].get<std::string>().size(), (bytes + 2) / 3 * 4);
 }
 
+// A drone over the area marks the cells under its camera, as the server's
+// coverage_fraction does (the same planner::CoverageGrid); one not heard yet or
+// without a fix marks nothing.
+TEST(CommandCenterPlan, ADroneOverTheAreaMarksTheCellsItsCameraSees) {
+  CommandCenter center({});
+  center.OnPlan(PlanMessage(PlanJson().dump(), 1));
+  const auto seen_bits = [&] {
+    std::size_t count = 0;
+    const std::string seen = center.Coverage()["seen"].get<std::string>();
+    for (const char c : seen) count += c != 'A' && c != '=' ? 1 : 0;  // base64 of a zero byte
+    return count;
+  };
+  vehicle_state_t drone = test::Flying(1, {100.0, 50.0}, 60.0, 1'000'000);
+  drone.has_position = false;
+  center.OnVehicleState(drone);
+  EXPECT_EQ(seen_bits(), 0U);
+  drone.has_position = true;
+  center.OnVehicleState(drone);
+  EXPECT_GT(seen_bits(), 0U);
+}
+
 }  // namespace
 }  // namespace fireswarm::server

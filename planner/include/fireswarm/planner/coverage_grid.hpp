@@ -54,6 +54,13 @@ class CoverageGrid {
   double cell_m() const { return cell_m_; }
   std::size_t searchable_cells() const { return searchable_; }
   std::size_t seen_cells() const { return seen_; }
+  /// The raster: `rows` cells from the south, `cols` from the west, cell (0, 0)'s
+  /// south-west corner at `south_west_en_m` (local metres east, north).
+  int rows() const { return rows_; }
+  int cols() const { return cols_; }
+  Eigen::Vector2d south_west_en_m() const { return {min_e_, min_n_}; }
+  /// Whether a camera has seen cell (row, col); false outside the raster.
+  bool Seen(int row, int col) const;
 
  private:
   double min_e_ = 0.0;
