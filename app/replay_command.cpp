@@ -71,13 +71,12 @@ server::ReplayLog LoadLog(const std::string& path) {
 }
 
 // Serves the replay until the wall-time limit or a signal.
-void Serve(const server::ReplayLog& log, server::WebServer& web, const Flags& f) {
+void Serve(ReplayFeed& feed, server::WebServer& web, const Flags& f) {
   const Clock::time_point start = Clock::now();
   const Clock::time_point end = f.duration_s
                                     ? start + std::chrono::duration_cast<Clock::duration>(
                                                   std::chrono::duration<double>(*f.duration_s))
                                     : Clock::time_point::max();
-  ReplayFeed feed(log, web, f.speed, start);
   while (!StopRequested()) {
     const Clock::time_point now = Clock::now();
     if (now >= end) break;
@@ -114,8 +113,12 @@ int RunReplay(const std::vector<std::string>& args) {
   CheckFlags(f);
   const server::ReplayLog log = LoadLog(f.log);
   const StopOnSignals stop;
-  const std::unique_ptr<server::WebServer> web = StartWebServer(kName, f.web, true);
-  Serve(log, *web, f);
+  std::optional<ReplayFeed> feed;
+  // The feed serves the log's start before the URL is printed.
+  const std::unique_ptr<server::WebServer> web = StartWebServer(
+      kName, f.web, true,
+      [&](server::WebServer& started) { feed.emplace(log, started, f.speed, Clock::now()); });
+  Serve(*feed, *web, f);
   return kExitOk;
 }
 
