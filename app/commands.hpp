@@ -14,6 +14,7 @@ int RunSimBench(const std::vector<std::string>& args);
 int RunVehicle(const std::vector<std::string>& args);
 int RunParams(const std::vector<std::string>& args);
 int RunRun(const std::vector<std::string>& args);
+int RunReplay(const std::vector<std::string>& args);
 int RunServe(const std::vector<std::string>& args);
 int RunSim(const std::vector<std::string>& args);
 

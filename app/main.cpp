@@ -24,6 +24,8 @@ constexpr std::array kCommands{
             fireswarm::app::RunRadioBench},
     Command{"radio-decode", "decode a raw APOne byte capture into one JSON line per frame",
             fireswarm::app::RunRadioDecode},
+    Command{"replay", "show a recorded mission (LCM log) on the command-center page, read-only",
+            fireswarm::app::RunReplay},
     Command{"run", "fly a scenario file headless in simulated time; write the scored report",
             fireswarm::app::RunRun},
     Command{"serve", "run the command server on the wall clock over a serial or UDP radio link",

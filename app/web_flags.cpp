@@ -103,8 +103,9 @@ std::string DefaultWebRoot() {
   return FIRESWARM_INSTALLED_WEB_DIR;
 }
 
-std::unique_ptr<server::WebServer> StartWebServer(const std::string& command, const WebFlags& f,
-                                                  bool read_only) {
+std::unique_ptr<server::WebServer> StartWebServer(
+    const std::string& command, const WebFlags& f, bool read_only,
+    const std::function<void(server::WebServer&)>& ready) {
   if (f.http.empty()) return nullptr;
   const HostPort address = *ParseHostPort(f.http);
   server::WebServerConfig config;
@@ -124,6 +125,7 @@ std::unique_ptr<server::WebServer> StartWebServer(const std::string& command, co
   } catch (const std::exception& e) {
     throw UsageError("fireswarm " + command + ": " + e.what());
   }
+  if (ready) ready(*web);
   std::cout << "http: listening on " << web->url() << std::endl;
   return web;
 }

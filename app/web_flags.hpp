@@ -5,6 +5,7 @@
 
 #include <boost/program_options.hpp>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 
@@ -45,10 +46,13 @@ std::string ReadOperatorToken(const std::string& command, const std::string& fil
 std::string DefaultWebRoot();
 
 /// The web server the flags ask for, listening (its URL printed on stdout as
-/// "http: listening on URL"); null without --http. Throws UsageError naming the
-/// flag when the server refuses its configuration or cannot listen.
+/// "http: listening on URL"); null without --http. `ready`, when given, is called
+/// with the server before its URL is printed (e.g. to serve the first documents,
+/// so no client that read the URL gets an empty state). Throws UsageError naming
+/// the flag when the server refuses its configuration or cannot listen.
 /// Precondition: CheckWebFlags passed.
-std::unique_ptr<server::WebServer> StartWebServer(const std::string& command, const WebFlags& flags,
-                                                  bool read_only);
+std::unique_ptr<server::WebServer> StartWebServer(
+    const std::string& command, const WebFlags& flags, bool read_only,
+    const std::function<void(server::WebServer&)>& ready = {});
 
 }  // namespace fireswarm::app

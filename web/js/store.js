@@ -114,6 +114,8 @@ export class Store {
     this.radio = state.radio || null;
     this.refused = state.refused ?? 0;
     this.plan = state.plan ?? null;
+    // A replay's state holds its timeline, so the page knows it with the snapshot.
+    this.replay = state.replay ? { type: 'replay', ...state.replay } : null;
     this.vehicles = new Map();
     for (const v of state.vehicles || []) {
       this.vehicles.set(v.id, { ...v, trail: (v.trail || []).slice(-TRAIL_POINTS) });
