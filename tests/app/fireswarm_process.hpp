@@ -11,9 +11,11 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdint>
 #include <cstdlib>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "app/run_fireswarm.hpp"
@@ -84,6 +86,23 @@ class FireswarmProcess {
         buffer_.append(chunk, static_cast<std::size_t>(got));
       }
     }
+  }
+
+  /// Reads stdout up to the "http: listening on http://127.0.0.1:PORT/" line that
+  /// --http prints once the page is served; its port, or nullopt if the line did not
+  /// come before `deadline` (the lines before it are dropped).
+  std::optional<std::uint16_t> ReadListeningPort(std::chrono::steady_clock::time_point deadline) {
+    constexpr std::string_view kPrefix = "http: listening on http://127.0.0.1:";
+    while (auto line = ReadLine(deadline)) {
+      if (!line->starts_with(kPrefix) || !line->ends_with('/')) continue;
+      const std::string digits = line->substr(kPrefix.size(), line->size() - kPrefix.size() - 1);
+      if (digits.empty() || digits.size() > 5 ||
+          digits.find_first_not_of("0123456789") != std::string::npos) {
+        continue;
+      }
+      return static_cast<std::uint16_t>(std::stoi(digits));
+    }
+    return std::nullopt;
   }
 
   void Signal(int signal) const { ::kill(pid_, signal); }

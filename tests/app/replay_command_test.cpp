@@ -18,7 +18,6 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
-#include <regex>
 #include <string>
 
 #include "app/fireswarm_process.hpp"
@@ -133,14 +132,7 @@ class ReplayCommandTest : public CommandTest {
   // `fireswarm replay LOG --http 127.0.0.1:0` started; its port.
   std::optional<std::uint16_t> StartReplay(const std::string& log) {
     replay_.emplace(std::vector<std::string>{"replay", log, "--http", "127.0.0.1:0"});
-    const std::regex listening(R"(http: listening on http://127\.0\.0\.1:(\d+)/)");
-    while (auto line = replay_->ReadLine(steady_clock::now() + kTimeout)) {
-      std::smatch match;
-      if (std::regex_match(*line, match, listening)) {
-        return static_cast<std::uint16_t>(std::stoi(match[1]));
-      }
-    }
-    return std::nullopt;
+    return replay_->ReadListeningPort(steady_clock::now() + kTimeout);
   }
   static std::string Output(const RunResult& result) {
     std::string text;

@@ -10,7 +10,6 @@
 #include <chrono>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <regex>
 #include <string>
 
 #include "app/fireswarm_process.hpp"
@@ -87,15 +86,7 @@ TEST_F(WebFlagsTest, RunServesThePageWhileItGoesAtThePaceAsked) {
                         "--web-root", PathOf("web"), "--operator-token-file", token, "--pace",
                         std::to_string(kPace)});
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
-  const std::regex listening(R"(http: listening on http://127\.0\.0\.1:(\d+)/)");
-  std::optional<std::uint16_t> port;
-  while (auto line = run.ReadLine(deadline)) {
-    std::smatch match;
-    if (std::regex_match(*line, match, listening)) {
-      port = static_cast<std::uint16_t>(std::stoi(match[1]));
-      break;
-    }
-  }
+  const std::optional<std::uint16_t> port = run.ReadListeningPort(deadline);
   ASSERT_TRUE(port) << "no listening line";
   const auto index = Get(*port, "/");
   EXPECT_EQ(index.result(), http::status::ok);

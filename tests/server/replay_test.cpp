@@ -64,10 +64,13 @@ fs::path WriteMission(const std::string& name) {
   }
   Write(log, "FIRESWARM_FIRE_TRACKS",
         test::Tracks(3'000'000, {test::Track(2, fire_track_t::STATUS_TENTATIVE, {1})}));
-  command_status_t status;
+  command_status_t status{};  // LCM's structs leave their numbers uninitialised
   status.utime = 4'500'000;
   status.command_id = 1;
   status.command = operator_command_t::RETURN_ALL;
+  status.target_count = 1;
+  status.target_ids = {1};
+  status.target_states = {command_status_t::STATE_ACKNOWLEDGED};
   Write(log, "FIRESWARM_COMMAND_STATUS", status);
   Write(log, "RADIO_AIR", Plan(0));  // any payload: the channel is skipped, not decoded
   return path;
