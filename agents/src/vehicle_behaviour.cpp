@@ -39,7 +39,7 @@ std::vector<RoutePoint> RouteOf(const Mission& mission, double default_altitude_
     point.position = {waypoint.lat_deg, waypoint.lon_deg};
     point.altitude_m = waypoint.altitude_m > 0.0 ? waypoint.altitude_m : default_altitude_m;
     point.speed_mps = waypoint.speed_mps;
-    point.lane_start = (waypoint.flags & 1U) != 0;
+    point.lane_start = (waypoint.flags & radio::Waypoint::kLaneStart) != 0;
     route.push_back(point);
   }
   return route;

@@ -18,13 +18,13 @@ constexpr std::size_t kMaxDirections = 8;
 constexpr double kSameDirectionRad = std::numbers::pi / 180.0;
 constexpr double kDefaultOverlap = 0.10;
 
-struct Candidate {
+struct DirectionCandidate {
   double direction_rad = 0.0;
   double length_m = 0.0;
 };
 
 template <typename Ring>
-void AddEdgeDirections(const Ring& ring, std::vector<Candidate>& out) {
+void AddEdgeDirections(const Ring& ring, std::vector<DirectionCandidate>& out) {
   for (std::size_t i = 0; i + 1 < ring.size(); ++i) {
     const double dx = ring[i + 1].x() - ring[i].x(), dy = ring[i + 1].y() - ring[i].y();
     const double length_m = std::hypot(dx, dy);
@@ -38,7 +38,7 @@ void AddEdgeDirections(const Ring& ring, std::vector<Candidate>& out) {
 
 // The region's (and its hull's) edge directions, longest first, without repeats.
 std::vector<double> CandidateDirections(const MultiPolygon& region) {
-  std::vector<Candidate> edges;
+  std::vector<DirectionCandidate> edges;
   for (const Polygon& polygon : region) {
     AddEdgeDirections(polygon.outer(), edges);
     for (const auto& ring : polygon.inners()) AddEdgeDirections(ring, edges);
@@ -47,9 +47,11 @@ std::vector<double> CandidateDirections(const MultiPolygon& region) {
   bg::convex_hull(region, hull);
   AddEdgeDirections(hull.outer(), edges);
   std::sort(edges.begin(), edges.end(),
-            [](const Candidate& a, const Candidate& b) { return a.length_m > b.length_m; });
+            [](const DirectionCandidate& a, const DirectionCandidate& b) {
+              return a.length_m > b.length_m;
+            });
   std::vector<double> directions;
-  for (const Candidate& edge : edges) {
+  for (const DirectionCandidate& edge : edges) {
     const bool seen = std::any_of(directions.begin(), directions.end(), [&](double d) {
       const double diff = std::abs(d - edge.direction_rad);
       return std::min(diff, std::numbers::pi - diff) < kSameDirectionRad;

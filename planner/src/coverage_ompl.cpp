@@ -163,22 +163,22 @@ struct LegCost {
   }
 };
 
-struct Candidate {
+struct ViewpointCandidate {
   double distance_m;
   long column;
   long row;
   std::size_t slot;
-  bool operator<(const Candidate& o) const { return distance_m < o.distance_m; }
+  bool operator<(const ViewpointCandidate& o) const { return distance_m < o.distance_m; }
 };
 
 // Every viewpoint in the grid rings around `here` out to where none can be nearer
 // than `reach_m` beyond the nearest one found.
-std::vector<Candidate> RingCandidates(const std::vector<Point>& points, const Grid& grid,
-                                      Point here, double reach_m) {
+std::vector<ViewpointCandidate> RingCandidates(const std::vector<Point>& points, const Grid& grid,
+                                               Point here, double reach_m) {
   const long column = grid.Column(here.x());
   const long row = grid.Row(here.y());
   const long max_radius = std::max(grid.columns, grid.rows);
-  std::vector<Candidate> found;
+  std::vector<ViewpointCandidate> found;
   double nearest_m = std::numeric_limits<double>::infinity();
   for (long radius = 0; radius <= max_radius; ++radius) {
     // Every point in ring `radius` is at least (radius - 1) cells away.
@@ -214,14 +214,14 @@ std::vector<std::size_t> NearestNeighbourTour(const std::vector<Point>& points, 
   first_bucket.erase(std::find(first_bucket.begin(), first_bucket.end(), first));
   Point here = points[first];
   while (tour.size() < points.size()) {
-    std::vector<Candidate> candidates = RingCandidates(points, grid, here, 0.0);
-    Candidate best = *std::min_element(candidates.begin(), candidates.end());
+    std::vector<ViewpointCandidate> candidates = RingCandidates(points, grid, here, 0.0);
+    ViewpointCandidate best = *std::min_element(candidates.begin(), candidates.end());
     const auto& nearest_bucket = grid.Bucket(best.column, best.row);
     if (!cost.Clear(here, points[nearest_bucket[best.slot]])) {
       candidates = RingCandidates(points, grid, here, cost.detour_m);
       std::sort(candidates.begin(), candidates.end());
       double best_cost = std::numeric_limits<double>::infinity();
-      for (const Candidate& c : candidates) {
+      for (const ViewpointCandidate& c : candidates) {
         if (c.distance_m >= best_cost) break;
         const double leg = cost(here, points[grid.Bucket(c.column, c.row)[c.slot]]);
         if (leg < best_cost) {

@@ -65,8 +65,8 @@ class Raster {
   std::vector<std::uint8_t> bits_;
 };
 
-constexpr std::uint8_t kInside = 1;
-constexpr std::uint8_t kSeen = 2;
+constexpr std::uint8_t kInsideBit = 1;
+constexpr std::uint8_t kSeenBit = 2;
 
 // Marks the slice of the capsule (segment a-b grown by r) on every row it spans.
 void MarkCapsule(Raster& raster, Point a, Point b, double r) {
@@ -91,7 +91,7 @@ void MarkCapsule(Raster& raster, Point a, Point b, double r) {
       lo = std::min(lo, x);
       hi = std::max(hi, x);
     }
-    if (lo <= hi) raster.Mark(j, lo, hi, kSeen);
+    if (lo <= hi) raster.Mark(j, lo, hi, kSeenBit);
   }
 }
 
@@ -106,7 +106,7 @@ double CoverageFraction(const MultiPolygon& region, const std::vector<Path>& pat
   for (std::size_t j = 0; j < raster.rows(); ++j) {
     for (const Polygon& polygon : region) {
       for (const auto& [a, b] : LineIntervals(polygon, raster.RowY(j)))
-        raster.Mark(j, a, b, kInside);
+        raster.Mark(j, a, b, kInsideBit);
     }
   }
   for (const Path& path : paths) {
@@ -114,9 +114,9 @@ double CoverageFraction(const MultiPolygon& region, const std::vector<Path>& pat
       MarkCapsule(raster, path[i], path[i + 1], radius_m);
     if (path.size() == 1) MarkCapsule(raster, path[0], path[0], radius_m);
   }
-  const std::size_t inside = raster.Count(kInside);
+  const std::size_t inside = raster.Count(kInsideBit);
   if (inside == 0) return 1.0;
-  return static_cast<double>(raster.Count(kInside | kSeen)) / static_cast<double>(inside);
+  return static_cast<double>(raster.Count(kInsideBit | kSeenBit)) / static_cast<double>(inside);
 }
 
 std::vector<double> CellDistancesM(const MultiPolygon& region, const std::vector<Point>& points,

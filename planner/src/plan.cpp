@@ -27,8 +27,8 @@ namespace {
 
 constexpr int kMinReceiverId = 1;
 constexpr int kMaxReceiverId = 254;
-constexpr double kBoundsMarginM = 500.0;   // room for transits around the area
-constexpr double kOmplTurnAngleRad = 0.5;  // heading changes counted as turns on OMPL paths
+constexpr double kPlanBoundsMarginM = 500.0;  // room for transits around the area
+constexpr double kOmplTurnAngleRad = 0.5;     // heading changes counted as turns on OMPL paths
 
 void Require(bool ok, const std::string& message) {
   if (!ok) throw std::invalid_argument(message);
@@ -82,8 +82,9 @@ Box TransitBounds(const SearchArea& area, const std::vector<Point>& launches) {
     bg::envelope(area.no_fly, zones);
     bg::expand(box, zones);
   }
-  return Box{{box.min_corner().x() - kBoundsMarginM, box.min_corner().y() - kBoundsMarginM},
-             {box.max_corner().x() + kBoundsMarginM, box.max_corner().y() + kBoundsMarginM}};
+  return Box{
+      {box.min_corner().x() - kPlanBoundsMarginM, box.min_corner().y() - kPlanBoundsMarginM},
+      {box.max_corner().x() + kPlanBoundsMarginM, box.max_corner().y() + kPlanBoundsMarginM}};
 }
 
 std::vector<Point> LaunchPerDrone(const FleetSpec& fleet) {

@@ -34,10 +34,10 @@ namespace og = ompl::geometric;
 
 namespace {
 
-constexpr double kMinPieceM = 1e-6;       // shorter pieces are rounding at a grazed vertex
-constexpr double kClearanceM = 1.0;       // wanted distance of OMPL states from a zone
-constexpr double kMaxPlanSeconds = 1.0;   // cap of one OMPL query
-constexpr double kBoundsMarginM = 100.0;  // room around the bounds and the endpoints
+constexpr double kMinPieceM = 1e-6;              // shorter pieces are rounding at a grazed vertex
+constexpr double kClearanceM = 1.0;              // wanted distance of OMPL states from a zone
+constexpr double kMaxPlanSeconds = 1.0;          // cap of one OMPL query
+constexpr double kTransitBoundsMarginM = 100.0;  // room around the bounds and the endpoints
 constexpr double kSameStateM = 1e-9;
 constexpr double kCornerOffsetM = 0.01;  // visibility-graph corners this far off a zone
 
@@ -317,10 +317,14 @@ Path TransitPlanner::Plan(Point from, Point to) const {
   if (!shortest.empty()) return shortest;
   auto space = std::make_shared<ob::RealVectorStateSpace>(2);
   ob::RealVectorBounds bounds(2);
-  bounds.setLow(0, std::min({impl_->bounds.min_corner().x(), from.x(), to.x()}) - kBoundsMarginM);
-  bounds.setLow(1, std::min({impl_->bounds.min_corner().y(), from.y(), to.y()}) - kBoundsMarginM);
-  bounds.setHigh(0, std::max({impl_->bounds.max_corner().x(), from.x(), to.x()}) + kBoundsMarginM);
-  bounds.setHigh(1, std::max({impl_->bounds.max_corner().y(), from.y(), to.y()}) + kBoundsMarginM);
+  bounds.setLow(
+      0, std::min({impl_->bounds.min_corner().x(), from.x(), to.x()}) - kTransitBoundsMarginM);
+  bounds.setLow(
+      1, std::min({impl_->bounds.min_corner().y(), from.y(), to.y()}) - kTransitBoundsMarginM);
+  bounds.setHigh(
+      0, std::max({impl_->bounds.max_corner().x(), from.x(), to.x()}) + kTransitBoundsMarginM);
+  bounds.setHigh(
+      1, std::max({impl_->bounds.max_corner().y(), from.y(), to.y()}) + kTransitBoundsMarginM);
   space->setBounds(bounds);
   const unsigned seed = impl_->seed;
   space->setStateSamplerAllocator(

@@ -16,8 +16,6 @@ namespace {
 using internal::SchedulerState;
 using internal::VehicleState;
 
-constexpr std::uint8_t kFirstVehicleId = 1;
-constexpr std::uint8_t kLastVehicleId = 254;
 // SlotSchedule carries first_slot_delay_us and guard_us as u16 microseconds.
 constexpr Nanos kMaxWireMicros = std::chrono::microseconds(65'535);
 

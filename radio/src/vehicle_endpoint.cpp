@@ -10,8 +10,6 @@
 namespace fireswarm::radio {
 namespace {
 
-constexpr std::uint8_t kFirstVehicleId = 1;
-constexpr std::uint8_t kLastVehicleId = 254;
 constexpr std::size_t kMaxPendingCount = 255;  // Telemetry.pending_reports saturates here
 
 void SetHeader(Message& message, MessageHeader header) {

@@ -10,8 +10,6 @@
 namespace fireswarm::server {
 namespace {
 
-constexpr std::uint8_t kLaneStartFlag = 1;  // radio::Waypoint::flags bit 0
-
 struct Lane {
   Eigen::Vector2d start_en_m;
   Eigen::Vector2d end_en_m;
@@ -32,7 +30,7 @@ std::vector<Lane> LanesOf(const std::vector<radio::Waypoint>& route,
                           const common::LocalFrame& frame) {
   std::vector<Lane> lanes;
   for (std::size_t i = 0; i + 1 < route.size(); ++i) {
-    if ((route[i].flags & kLaneStartFlag) == 0) continue;
+    if ((route[i].flags & radio::Waypoint::kLaneStart) == 0) continue;
     lanes.push_back({LocalOf(frame, route[i]), LocalOf(frame, route[i + 1])});
   }
   return lanes;
@@ -82,7 +80,7 @@ radio::Waypoint WaypointAt(const common::LocalFrame& frame, const Eigen::Vector2
   waypoint.lon_deg = p.lon_deg;
   waypoint.altitude_m = taker.altitude_m;
   waypoint.speed_mps = taker.speed_mps;
-  waypoint.flags = lane_start ? kLaneStartFlag : 0;
+  waypoint.flags = lane_start ? radio::Waypoint::kLaneStart : 0;
   return waypoint;
 }
 

@@ -13,7 +13,6 @@ namespace fireswarm::server {
 
 namespace {
 
-constexpr std::uint8_t kLaneStartFlag = 1U << 0;  // radio::Waypoint::flags bit 0
 // Waypoints this close to the launch site count as the launch site, m.
 constexpr double kLaunchSiteM = 1.0;
 
@@ -42,7 +41,7 @@ std::vector<DroneMission> ToDroneMissions(const planner::Plan& plan, std::uint16
       waypoint.lon_deg = point.geodetic.lon_deg;
       waypoint.altitude_m = altitude_m;
       waypoint.speed_mps = speed_mps;
-      waypoint.flags = point.starts_lane ? kLaneStartFlag : std::uint8_t{0};
+      waypoint.flags = point.starts_lane ? radio::Waypoint::kLaneStart : std::uint8_t{0};
       mission.waypoints.push_back(waypoint);
     }
     missions.push_back(std::move(mission));

@@ -9,8 +9,6 @@ namespace fireswarm::server {
 
 namespace {
 
-constexpr std::uint8_t kLaneStartFlag = 1U << 0;  // radio::Waypoint::flags bit 0
-
 // The task its telemetry's mode alone tells; nullopt for modes that need the
 // server's view (idle, take-off, search).
 std::optional<VehicleTask> TaskOfMode(radio::FlightMode mode) {
@@ -66,7 +64,7 @@ const char* ToString(VehicleTask task) {
 LanePosition LaneOf(const std::vector<radio::Waypoint>& route, std::size_t flying_to) {
   LanePosition lanes;
   for (std::size_t i = 0; i + 1 < route.size(); ++i) {
-    if ((route[i].flags & kLaneStartFlag) == 0) continue;
+    if ((route[i].flags & radio::Waypoint::kLaneStart) == 0) continue;
     ++lanes.count;
     // Lane `count` ends at waypoint i + 1: it is flown or still ahead while the
     // drone flies to that waypoint or an earlier one.

@@ -31,11 +31,6 @@ std::vector<Vec2> DiscPolygon(const Distractor& d) {
   return polygon;
 }
 
-bool Overlaps(const GroundBox& a, const GroundBox& b) {
-  return a.min_m.x() <= b.max_m.x() && b.min_m.x() <= a.max_m.x() && a.min_m.y() <= b.max_m.y() &&
-         b.min_m.y() <= a.max_m.y();
-}
-
 double Uniform(Rng& rng, double lo, double hi) {
   return lo + (hi - lo) * static_cast<double>(rng() >> 11) * 0x1.0p-53;
 }
@@ -109,7 +104,7 @@ double TemperatureField::TemperatureAt(const Vec2& point_m) const {
 
 bool TemperatureField::AnyHotIn(const GroundBox& box) const {
   for (const GroundBox& b : distractor_boxes_) {
-    if (Overlaps(box, b)) return true;
+    if (box.Overlaps(b)) return true;
   }
   return fire_->AnyHotIn(box);
 }
@@ -161,7 +156,7 @@ double TemperatureField::MeanRadianceOver(const GroundQuad& quad) const {
     });
   }
   for (std::size_t i = 0; i < distractors_.size(); ++i) {
-    if (!Overlaps(box, distractor_boxes_[i])) continue;
+    if (!box.Overlaps(distractor_boxes_[i])) continue;
     const double covered = OverlapAreaM2(distractor_polygons_[i], ccw);
     excess += covered * (RadianceFromC(distractors_[i].temperature_c) - ambient);
   }

@@ -9,11 +9,6 @@
 namespace fireswarm::sim2d {
 namespace {
 
-bool Overlaps(const GroundBox& a, const GroundBox& b) {
-  return a.min_m.x() <= b.max_m.x() && b.min_m.x() <= a.max_m.x() && a.min_m.y() <= b.max_m.y() &&
-         b.min_m.y() <= a.max_m.y();
-}
-
 // Lattice index of a coordinate, clamped far enough out that int conversion is safe.
 // (Multiplying by the inverse cell size may move a point on a grid line to the
 // neighbouring cell: the answer is then off by a zero-area touch.)
@@ -50,7 +45,7 @@ bool HotCellMask::Build(const TemperatureField& field, const GroundBox& box, dou
     // The field's own conservative box around the disc's 24-gon.
     const Vec2 r(d.radius_m * 1.05, d.radius_m * 1.05);
     const GroundBox disc{d.center_m - r, d.center_m + r};
-    if (!Overlaps(disc, box)) continue;
+    if (!disc.Overlaps(box)) continue;
     const Vec2 lo = disc.min_m.cwiseMax(box.min_m);
     const Vec2 hi = disc.max_m.cwiseMin(box.max_m);
     rects_.push_back({ColOf(lo.x()), RowOf(lo.y()), ColOf(hi.x()), RowOf(hi.y())});

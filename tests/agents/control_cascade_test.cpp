@@ -15,7 +15,7 @@ using std::chrono::milliseconds;
 
 constexpr milliseconds kStep{2};
 constexpr int kStepsPerSecond = 500;
-constexpr double kTolerance = 1e-9;
+constexpr double kCascadeTolerance = 1e-9;
 
 // An integral-only loop with wide limits: every time it runs on a constant error
 // its output moves, so counting output changes counts the runs.
@@ -123,7 +123,7 @@ TEST(ControlCascade, HeadingErrorWraps) {
     setpoint.heading_rad = 350.0 * common::kRadPerDeg;
     // 20 deg to the left, not 340 to the right.
     EXPECT_NEAR(cascade.Step(Nanos{0}, input, setpoint).yaw_rate_radps, -20.0 * common::kRadPerDeg,
-                kTolerance);
+                kCascadeTolerance);
   }
   {
     ControlCascade cascade(config);
@@ -132,7 +132,7 @@ TEST(ControlCascade, HeadingErrorWraps) {
     CascadeSetpoint setpoint;
     setpoint.heading_rad = 10.0 * common::kRadPerDeg;
     EXPECT_NEAR(cascade.Step(Nanos{0}, input, setpoint).yaw_rate_radps, 20.0 * common::kRadPerDeg,
-                kTolerance);
+                kCascadeTolerance);
   }
 }
 
@@ -144,14 +144,14 @@ TEST(ControlCascade, ClimbRateOverrideBypassesTheAltitudeLoop) {
   CascadeSetpoint setpoint;
   setpoint.altitude_m = 100.0;  // the loop alone would climb at the limit
   setpoint.climb_rate_mps = -1.5;
-  EXPECT_NEAR(cascade.Step(Nanos{0}, {}, setpoint).climb_rate_mps, -1.5, kTolerance);
+  EXPECT_NEAR(cascade.Step(Nanos{0}, {}, setpoint).climb_rate_mps, -1.5, kCascadeTolerance);
   EXPECT_EQ(cascade.altitude_pid().error(), 0.0);  // the PID did not run
   EXPECT_EQ(cascade.altitude_pid().p_value(), 0.0);
   // Without the override the loop takes over.
   setpoint.climb_rate_mps.reset();
   EXPECT_NEAR(cascade.Step(Nanos{milliseconds{40}}, {}, setpoint).climb_rate_mps,
-              config.max_climb_mps, kTolerance);
-  EXPECT_NEAR(cascade.altitude_pid().error(), 100.0, kTolerance);
+              config.max_climb_mps, kCascadeTolerance);
+  EXPECT_NEAR(cascade.altitude_pid().error(), 100.0, kCascadeTolerance);
 }
 
 TEST(ControlCascade, ClimbRateOverrideIsClamped) {
@@ -160,10 +160,10 @@ TEST(ControlCascade, ClimbRateOverrideIsClamped) {
   CascadeSetpoint setpoint;
   setpoint.climb_rate_mps = 50.0;
   EXPECT_NEAR(cascade.Step(Nanos{0}, {}, setpoint).climb_rate_mps, config.max_climb_mps,
-              kTolerance);
+              kCascadeTolerance);
   setpoint.climb_rate_mps = -50.0;
   EXPECT_NEAR(cascade.Step(Nanos{milliseconds{40}}, {}, setpoint).climb_rate_mps,
-              -config.max_descent_mps, kTolerance);
+              -config.max_descent_mps, kCascadeTolerance);
 }
 
 TEST(ControlCascade, OutputsAreClampedToTheirLimits) {
@@ -193,10 +193,10 @@ TEST(ControlCascade, OutputsAreClampedToTheirLimits) {
     input.roll_rad = -c.sign * 0.3;  // the PID pushes further out
     input.pitch_rad = -c.sign * 0.3;
     const ActuatorOutputs out = cascade.Step(Nanos{0}, input, setpoint);
-    EXPECT_NEAR(out.roll_rad, c.sign * 0.44, kTolerance) << c.sign;
-    EXPECT_NEAR(out.pitch_rad, c.sign * 0.44, kTolerance) << c.sign;
-    EXPECT_NEAR(out.yaw_rate_radps, c.sign * 1.57, kTolerance) << c.sign;
-    EXPECT_NEAR(out.climb_rate_mps, c.climb_limit, kTolerance) << c.sign;
+    EXPECT_NEAR(out.roll_rad, c.sign * 0.44, kCascadeTolerance) << c.sign;
+    EXPECT_NEAR(out.pitch_rad, c.sign * 0.44, kCascadeTolerance) << c.sign;
+    EXPECT_NEAR(out.yaw_rate_radps, c.sign * 1.57, kCascadeTolerance) << c.sign;
+    EXPECT_NEAR(out.climb_rate_mps, c.climb_limit, kCascadeTolerance) << c.sign;
     EXPECT_FALSE(out.armed);
   }
 }
@@ -212,7 +212,7 @@ TEST(ControlCascade, AttitudeSetPointIsClampedBeforeThePid) {
   CascadeInput input;
   input.roll_rad = 0.44;  // already at the limit: nothing left to correct
   cascade.Step(Nanos{0}, input, setpoint);
-  EXPECT_NEAR(cascade.roll_pid().error(), 0.0, kTolerance);
+  EXPECT_NEAR(cascade.roll_pid().error(), 0.0, kCascadeTolerance);
 }
 
 TEST(ControlCascade, TrimsAreAdded) {
@@ -224,8 +224,8 @@ TEST(ControlCascade, TrimsAreAdded) {
   setpoint.roll_rad = 0.1;
   setpoint.pitch_rad = -0.2;
   const ActuatorOutputs out = cascade.Step(Nanos{0}, {}, setpoint);
-  EXPECT_NEAR(out.roll_rad, 0.15, kTolerance);
-  EXPECT_NEAR(out.pitch_rad, -0.23, kTolerance);
+  EXPECT_NEAR(out.roll_rad, 0.15, kCascadeTolerance);
+  EXPECT_NEAR(out.pitch_rad, -0.23, kCascadeTolerance);
 }
 
 TEST(ControlCascade, ResetRestartsTheLoops) {

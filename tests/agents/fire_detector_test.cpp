@@ -48,12 +48,6 @@ struct Flight {
 };
 
 // One burning forest cell at (500, 500); returns its centre.
-Vec2 LightOneCell(ThermalScene& scene) {
-  scene.fire.AddIgnition({Vec2(500.0, 500.0), 0.0});
-  scene.fire.AdvanceTo(1.0);
-  return scene.fire.CellCenter(*scene.fire.CellAt({500.0, 500.0}));
-}
-
 // Flies north over x = 505 at 100 m, 10 m/s, nose 5 deg down, one frame per
 // 1/9 s from y = 350 to y = 650, the time starting at `t0_s`.
 void FlyNorthOver(Flight& flight, const ThermalScene& scene, double t0_s = 1.0) {

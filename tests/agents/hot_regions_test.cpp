@@ -22,11 +22,6 @@ constexpr double kFireCentreM = 500.0;
 
 // One burning 5 m cell at (500, 500) (forest: it burns ten minutes and spreads
 // 0.3 m/min, so it stays one cell through every test).
-void LightOneCell(ThermalScene& scene) {
-  scene.fire.AddIgnition({Vec2(kFireCentreM, kFireCentreM), 0.0});
-  scene.fire.AdvanceTo(1.0);
-}
-
 // Open fuel around (500, 500), burned for `seconds`: a disc of flames and
 // embers (all above 150 C), symmetric about the ignited cell in still air.
 void GrowBigFire(ThermalScene& scene, double seconds) {

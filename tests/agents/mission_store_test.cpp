@@ -21,7 +21,7 @@ using radio::Waypoint;
 constexpr double kBaseLatDeg = 45.2;
 constexpr double kBaseLonDeg = 7.6;
 constexpr double kStepDeg = 3.3e-4;  // ~35 m between waypoints
-constexpr double kAltitudeM = 60.3;
+constexpr double kStoredAltitudeM = 60.3;
 constexpr double kSpeedMps = 8.4;
 
 std::vector<Waypoint> MakeWaypoints(std::size_t count, double offset_deg = 0.0) {
@@ -30,7 +30,7 @@ std::vector<Waypoint> MakeWaypoints(std::size_t count, double offset_deg = 0.0) 
     const auto step = static_cast<double>(i);
     waypoints[i].lat_deg = kBaseLatDeg + offset_deg + kStepDeg * step;
     waypoints[i].lon_deg = kBaseLonDeg - kStepDeg * step * step / 50.0;
-    waypoints[i].altitude_m = kAltitudeM;
+    waypoints[i].altitude_m = kStoredAltitudeM;
     waypoints[i].speed_mps = kSpeedMps;
     waypoints[i].flags = static_cast<std::uint8_t>(i % 2);
   }

@@ -20,7 +20,7 @@ using common::LocalFrame;
 constexpr double kSeedEarthRadiusM = 6378137.0;
 constexpr LatLon kOrigin{45.2, 7.6};
 constexpr common::Micros kStepUs{1e5};  // 10 Hz navigation
-constexpr double kTolerance = 1e-9;
+constexpr double kNavigationTolerance = 1e-9;
 
 // Signed difference a - b of two angles in degrees, in [-180, 180].
 double AngleDiffDeg(double a_deg, double b_deg) {
@@ -41,11 +41,11 @@ LatLon GeodesicDirect(LatLon from, double azimuth_deg, double distance_m) {
 }
 
 TEST(SeedBearingDeg, CardinalDirectionsOnTheEquator) {
-  EXPECT_NEAR(SeedBearingDeg({0.0, 0.0}, {0.01, 0.0}), 0.0, kTolerance);
-  EXPECT_NEAR(SeedBearingDeg({0.0, 0.0}, {0.0, 0.01}), 90.0, kTolerance);
-  EXPECT_NEAR(SeedBearingDeg({0.0, 0.0}, {-0.01, 0.0}), 180.0, kTolerance);
+  EXPECT_NEAR(SeedBearingDeg({0.0, 0.0}, {0.01, 0.0}), 0.0, kNavigationTolerance);
+  EXPECT_NEAR(SeedBearingDeg({0.0, 0.0}, {0.0, 0.01}), 90.0, kNavigationTolerance);
+  EXPECT_NEAR(SeedBearingDeg({0.0, 0.0}, {-0.01, 0.0}), 180.0, kNavigationTolerance);
   // The listing's (theta + 360) % 360: west is 270, not -90.
-  EXPECT_NEAR(SeedBearingDeg({0.0, 0.0}, {0.0, -0.01}), 270.0, kTolerance);
+  EXPECT_NEAR(SeedBearingDeg({0.0, 0.0}, {0.0, -0.01}), 270.0, kNavigationTolerance);
 }
 
 TEST(SeedBearingDeg, StaysInZeroTo360) {
@@ -129,26 +129,26 @@ constexpr double kNoLimit = 10.0;
 
 TEST(TiltToBody, HeadingNorthTiltEastIsPositiveRoll) {
   const BodyTilt body = TiltToBody(0.1, 0.0, 0.0, kNoLimit);
-  EXPECT_NEAR(body.roll_rad, 0.1, kTolerance);
-  EXPECT_NEAR(body.pitch_rad, 0.0, kTolerance);
+  EXPECT_NEAR(body.roll_rad, 0.1, kNavigationTolerance);
+  EXPECT_NEAR(body.pitch_rad, 0.0, kNavigationTolerance);
 }
 
 TEST(TiltToBody, HeadingNorthTiltNorthIsNegativePitch) {
   const BodyTilt body = TiltToBody(0.0, 0.1, 0.0, kNoLimit);
-  EXPECT_NEAR(body.roll_rad, 0.0, kTolerance);
-  EXPECT_NEAR(body.pitch_rad, -0.1, kTolerance);
+  EXPECT_NEAR(body.roll_rad, 0.0, kNavigationTolerance);
+  EXPECT_NEAR(body.pitch_rad, -0.1, kNavigationTolerance);
 }
 
 TEST(TiltToBody, HeadingEast) {
   const double east = std::numbers::pi / 2.0;
   // Forward is east: nose down.
   BodyTilt body = TiltToBody(0.1, 0.0, east, kNoLimit);
-  EXPECT_NEAR(body.roll_rad, 0.0, kTolerance);
-  EXPECT_NEAR(body.pitch_rad, -0.1, kTolerance);
+  EXPECT_NEAR(body.roll_rad, 0.0, kNavigationTolerance);
+  EXPECT_NEAR(body.pitch_rad, -0.1, kNavigationTolerance);
   // North is on the left: roll left (negative).
   body = TiltToBody(0.0, 0.1, east, kNoLimit);
-  EXPECT_NEAR(body.roll_rad, -0.1, kTolerance);
-  EXPECT_NEAR(body.pitch_rad, 0.0, kTolerance);
+  EXPECT_NEAR(body.roll_rad, -0.1, kNavigationTolerance);
+  EXPECT_NEAR(body.pitch_rad, 0.0, kNavigationTolerance);
 }
 
 TEST(TiltToBody, ArbitraryHeading) {
@@ -157,30 +157,30 @@ TEST(TiltToBody, ArbitraryHeading) {
   const double forward_north = std::cos(heading);
   // Along the heading: pure forward pitch.
   BodyTilt body = TiltToBody(0.2 * forward_east, 0.2 * forward_north, heading, kNoLimit);
-  EXPECT_NEAR(body.roll_rad, 0.0, kTolerance);
-  EXPECT_NEAR(body.pitch_rad, -0.2, kTolerance);
+  EXPECT_NEAR(body.roll_rad, 0.0, kNavigationTolerance);
+  EXPECT_NEAR(body.pitch_rad, -0.2, kNavigationTolerance);
   // To the right of the heading (forward turned 90 deg clockwise): pure right roll.
   body = TiltToBody(0.2 * forward_north, -0.2 * forward_east, heading, kNoLimit);
-  EXPECT_NEAR(body.roll_rad, 0.2, kTolerance);
-  EXPECT_NEAR(body.pitch_rad, 0.0, kTolerance);
+  EXPECT_NEAR(body.roll_rad, 0.2, kNavigationTolerance);
+  EXPECT_NEAR(body.pitch_rad, 0.0, kNavigationTolerance);
   // Behind and to the left: nose up, roll left.
   body = TiltToBody(-0.1 * forward_east - 0.05 * forward_north,
                     -0.1 * forward_north + 0.05 * forward_east, heading, kNoLimit);
-  EXPECT_NEAR(body.roll_rad, -0.05, kTolerance);
-  EXPECT_NEAR(body.pitch_rad, 0.1, kTolerance);
+  EXPECT_NEAR(body.roll_rad, -0.05, kNavigationTolerance);
+  EXPECT_NEAR(body.pitch_rad, 0.1, kNavigationTolerance);
 }
 
 TEST(TiltToBody, LimitsTheMagnitudeKeepingTheDirection) {
   const BodyTilt body = TiltToBody(0.3, 0.4, 0.0, 0.25);
-  EXPECT_NEAR(std::hypot(body.roll_rad, body.pitch_rad), 0.25, kTolerance);
-  EXPECT_NEAR(body.roll_rad, 0.15, kTolerance);
-  EXPECT_NEAR(body.pitch_rad, -0.2, kTolerance);
+  EXPECT_NEAR(std::hypot(body.roll_rad, body.pitch_rad), 0.25, kNavigationTolerance);
+  EXPECT_NEAR(body.roll_rad, 0.15, kNavigationTolerance);
+  EXPECT_NEAR(body.pitch_rad, -0.2, kNavigationTolerance);
 }
 
 TEST(TiltToBody, LeavesATiltUnderTheLimitAlone) {
   const BodyTilt body = TiltToBody(0.03, 0.04, 0.0, 0.25);
-  EXPECT_NEAR(body.roll_rad, 0.03, kTolerance);
-  EXPECT_NEAR(body.pitch_rad, -0.04, kTolerance);
+  EXPECT_NEAR(body.roll_rad, 0.03, kNavigationTolerance);
+  EXPECT_NEAR(body.pitch_rad, -0.04, kNavigationTolerance);
 }
 
 // --- CrossTrackAccumulator
@@ -205,11 +205,11 @@ TEST(CrossTrackAccumulator, StatisticsOfKnownData) {
   }
   const CrossTrackStats stats = accumulator.Stats();
   EXPECT_EQ(stats.samples, 100u);
-  EXPECT_NEAR(stats.mean_m, 0.5, kTolerance);  // of the absolute values
-  EXPECT_NEAR(stats.rms_m, std::sqrt(sum_squares / 100.0), kTolerance);
-  EXPECT_NEAR(stats.max_m, 0.995, kTolerance);
+  EXPECT_NEAR(stats.mean_m, 0.5, kNavigationTolerance);  // of the absolute values
+  EXPECT_NEAR(stats.rms_m, std::sqrt(sum_squares / 100.0), kNavigationTolerance);
+  EXPECT_NEAR(stats.max_m, 0.995, kNavigationTolerance);
   // The 95th sample is 0.945 m, in the bin [0.94, 0.95): its upper edge.
-  EXPECT_NEAR(stats.p95_m, 0.95, kTolerance);
+  EXPECT_NEAR(stats.p95_m, 0.95, kNavigationTolerance);
 }
 
 TEST(CrossTrackAccumulator, P95IgnoresTheLargestFivePercent) {
@@ -218,14 +218,14 @@ TEST(CrossTrackAccumulator, P95IgnoresTheLargestFivePercent) {
   for (int i = 0; i < 5; ++i) accumulator.Add(-20.0);
   const CrossTrackStats stats = accumulator.Stats();
   EXPECT_NEAR(stats.p95_m, 0.11, 1e-6);
-  EXPECT_NEAR(stats.max_m, 20.0, kTolerance);
-  EXPECT_NEAR(stats.mean_m, (95 * 0.1 + 5 * 20.0) / 100.0, kTolerance);
+  EXPECT_NEAR(stats.max_m, 20.0, kNavigationTolerance);
+  EXPECT_NEAR(stats.mean_m, (95 * 0.1 + 5 * 20.0) / 100.0, kNavigationTolerance);
 }
 
 TEST(CrossTrackAccumulator, P95NeverExceedsTheMaximum) {
   CrossTrackAccumulator accumulator;
   accumulator.Add(0.123);
-  EXPECT_NEAR(accumulator.Stats().p95_m, 0.123, kTolerance);
+  EXPECT_NEAR(accumulator.Stats().p95_m, 0.123, kNavigationTolerance);
 }
 
 TEST(CrossTrackAccumulator, ClearForgetsEverything) {
@@ -237,12 +237,12 @@ TEST(CrossTrackAccumulator, ClearForgetsEverything) {
   EXPECT_EQ(stats.max_m, 0.0);
   EXPECT_EQ(stats.p95_m, 0.0);
   accumulator.Add(0.5);
-  EXPECT_NEAR(accumulator.Stats().mean_m, 0.5, kTolerance);
+  EXPECT_NEAR(accumulator.Stats().mean_m, 0.5, kNavigationTolerance);
 }
 
 // --- Navigator
 
-constexpr double kAltitudeM = 42.0;
+constexpr double kNavigationAltitudeM = 42.0;
 
 const LocalFrame& Frame() {
   static const LocalFrame frame(kOrigin);
@@ -256,7 +256,7 @@ LatLon At(double east_m, double north_m) {
 RoutePoint Point(double east_m, double north_m, bool lane_start = false) {
   RoutePoint point;
   point.position = At(east_m, north_m);
-  point.altitude_m = kAltitudeM;
+  point.altitude_m = kNavigationAltitudeM;
   point.lane_start = lane_start;
   return point;
 }
@@ -315,10 +315,10 @@ TEST(Navigator, SeedPitchesForwardOnlyWhenAligned) {
     navigator.SetRoute({Point(0.0, 100.0)}, 0, At(0.0, 0.0));
     const NavigationSetpoint setpoint =
         navigator.Step(Input(0.0, 0.0, c.heading_deg * common::kRadPerDeg), kStepUs);
-    EXPECT_NEAR(setpoint.pitch_rad, c.pitch_rad, kTolerance) << c.heading_deg;
+    EXPECT_NEAR(setpoint.pitch_rad, c.pitch_rad, kNavigationTolerance) << c.heading_deg;
     EXPECT_EQ(setpoint.roll_rad, 0.0) << c.heading_deg;
     EXPECT_NEAR(AngleDiffRad(setpoint.heading_rad, 0.0), 0.0, 0.2 * common::kRadPerDeg);
-    EXPECT_EQ(setpoint.altitude_m, kAltitudeM);
+    EXPECT_EQ(setpoint.altitude_m, kNavigationAltitudeM);
     EXPECT_EQ(navigator.cross_track_m(), 0.0);
   }
 }
@@ -362,7 +362,7 @@ TEST(Navigator, SeedFinishesAfterTheLastWaypointAndHoldsIt) {
   // The hold pulls toward the point, 5 m east: 0.25 rad east, right roll facing north.
   EXPECT_NEAR(setpoint.roll_rad, 0.25, 1e-6);
   EXPECT_NEAR(setpoint.pitch_rad, 0.0, 1e-6);
-  EXPECT_EQ(setpoint.altitude_m, kAltitudeM);
+  EXPECT_EQ(setpoint.altitude_m, kNavigationAltitudeM);
   // Blown 40 m south: still done, still holding the last point (tilt limited).
   setpoint = navigator.Step(Input(100.0, 60.0, 0.3), kStepUs);
   EXPECT_TRUE(navigator.finished());
@@ -381,7 +381,7 @@ TEST(Navigator, TrackHeadingIsTheSegmentBearing) {
   // Off the track, the bearing to the point would be atan2(90, 95); the segment's is 45 deg.
   const NavigationSetpoint setpoint = navigator.Step(Input(10.0, 5.0), kStepUs);
   EXPECT_NEAR(setpoint.heading_rad, std::numbers::pi / 4.0, 1e-6);
-  EXPECT_EQ(setpoint.altitude_m, kAltitudeM);
+  EXPECT_EQ(setpoint.altitude_m, kNavigationAltitudeM);
 }
 
 TEST(Navigator, TrackRollsRightWhenLeftOfANorthboundTrack) {

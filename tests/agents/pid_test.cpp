@@ -9,7 +9,7 @@ namespace {
 
 constexpr common::Micros kOneSecondUs{1e6};
 constexpr common::Micros kTenthSecondUs{1e5};
-constexpr double kTolerance = 1e-9;
+constexpr double kPidTolerance = 1e-9;
 
 // --- gains and arithmetic
 
@@ -17,18 +17,18 @@ TEST(Pid, SetGainsStoresEachGain) {
   // The seed's setK assigned the members to themselves; each gain must really land.
   Pid proportional;
   proportional.SetGains(3.0, 0.0, 0.0);
-  EXPECT_NEAR(proportional.Update(1.0, 3.0, kOneSecondUs), 3.0 * 2.0, kTolerance);
+  EXPECT_NEAR(proportional.Update(1.0, 3.0, kOneSecondUs), 3.0 * 2.0, kPidTolerance);
 
   Pid integral;
   integral.SetGains(0.0, 0.5, 0.0);
   // 2 units of error for 1 s: I state 2, I term 0.5 * 2.
-  EXPECT_NEAR(integral.Update(0.0, 2.0, kOneSecondUs), 1.0, kTolerance);
+  EXPECT_NEAR(integral.Update(0.0, 2.0, kOneSecondUs), 1.0, kPidTolerance);
 
   Pid derivative;
   derivative.SetGains(0.0, 0.0, 0.25);
   derivative.Update(0.0, 0.0, kOneSecondUs);
   // The measurement fell by 4 in 1 s: D = 0.25 * 4 / 1.
-  EXPECT_NEAR(derivative.Update(-4.0, 0.0, kOneSecondUs), 1.0, kTolerance);
+  EXPECT_NEAR(derivative.Update(-4.0, 0.0, kOneSecondUs), 1.0, kPidTolerance);
 }
 
 TEST(Pid, DefaultGainsGiveZero) {
@@ -41,31 +41,31 @@ TEST(Pid, MatchesHandComputedTermsOverThreeSteps) {
   Pid pid;
   pid.SetGains(2.0, 0.5, 0.1);
   // dt = 0.1 s. Step 1: err 1, I state 0.1; P 2, I 0.05, D 0 (no history) -> 2.05.
-  EXPECT_NEAR(pid.Update(0.0, 1.0, kTenthSecondUs), 2.05, kTolerance);
-  EXPECT_NEAR(pid.p_value(), 2.0, kTolerance);
-  EXPECT_NEAR(pid.i_value(), 0.05, kTolerance);
-  EXPECT_NEAR(pid.d_value(), 0.0, kTolerance);
-  EXPECT_NEAR(pid.error(), 1.0, kTolerance);
-  EXPECT_NEAR(pid.integrator_state(), 0.1, kTolerance);
+  EXPECT_NEAR(pid.Update(0.0, 1.0, kTenthSecondUs), 2.05, kPidTolerance);
+  EXPECT_NEAR(pid.p_value(), 2.0, kPidTolerance);
+  EXPECT_NEAR(pid.i_value(), 0.05, kPidTolerance);
+  EXPECT_NEAR(pid.d_value(), 0.0, kPidTolerance);
+  EXPECT_NEAR(pid.error(), 1.0, kPidTolerance);
+  EXPECT_NEAR(pid.integrator_state(), 0.1, kPidTolerance);
   // Step 2: feedback 0.2, err 0.8, I state 0.18; P 1.6, I 0.09,
   // D 0.1 * (0 - 0.2) / 0.1 = -0.2 -> 1.49.
-  EXPECT_NEAR(pid.Update(0.2, 1.0, kTenthSecondUs), 1.49, kTolerance);
-  EXPECT_NEAR(pid.d_value(), -0.2, kTolerance);
-  EXPECT_NEAR(pid.integrator_state(), 0.18, kTolerance);
+  EXPECT_NEAR(pid.Update(0.2, 1.0, kTenthSecondUs), 1.49, kPidTolerance);
+  EXPECT_NEAR(pid.d_value(), -0.2, kPidTolerance);
+  EXPECT_NEAR(pid.integrator_state(), 0.18, kPidTolerance);
   // Step 3: feedback 0.5, err 0.5, I state 0.23; P 1.0, I 0.115,
   // D 0.1 * (0.2 - 0.5) / 0.1 = -0.3 -> 0.815.
-  EXPECT_NEAR(pid.Update(0.5, 1.0, kTenthSecondUs), 0.815, kTolerance);
-  EXPECT_NEAR(pid.p_value(), 1.0, kTolerance);
-  EXPECT_NEAR(pid.i_value(), 0.115, kTolerance);
-  EXPECT_NEAR(pid.d_value(), -0.3, kTolerance);
+  EXPECT_NEAR(pid.Update(0.5, 1.0, kTenthSecondUs), 0.815, kPidTolerance);
+  EXPECT_NEAR(pid.p_value(), 1.0, kPidTolerance);
+  EXPECT_NEAR(pid.i_value(), 0.115, kPidTolerance);
+  EXPECT_NEAR(pid.d_value(), -0.3, kPidTolerance);
 }
 
 TEST(Pid, IntegratesOverDtInMicroseconds) {
   Pid pid;
   pid.SetGains(0.0, 1.0, 0.0);
   // 1 unit of error for 250 ms, then for 2.5 s.
-  EXPECT_NEAR(pid.Update(0.0, 1.0, common::Micros{250'000.0}), 0.25, kTolerance);
-  EXPECT_NEAR(pid.Update(0.0, 1.0, common::Micros{2'500'000.0}), 2.75, kTolerance);
+  EXPECT_NEAR(pid.Update(0.0, 1.0, common::Micros{250'000.0}), 0.25, kPidTolerance);
+  EXPECT_NEAR(pid.Update(0.0, 1.0, common::Micros{2'500'000.0}), 2.75, kPidTolerance);
 }
 
 // --- derivative on the measurement
@@ -83,9 +83,9 @@ TEST(Pid, MeasurementStepGivesDerivativeAgainstTheChange) {
   pid.SetGains(0.0, 0.0, 1.0);
   pid.Update(5.0, 5.0, kTenthSecondUs);
   // The measurement rose by 1 in 0.1 s: D = -(1 / 0.1).
-  EXPECT_NEAR(pid.Update(6.0, 5.0, kTenthSecondUs), -10.0, kTolerance);
+  EXPECT_NEAR(pid.Update(6.0, 5.0, kTenthSecondUs), -10.0, kPidTolerance);
   // And falls back: D = +10.
-  EXPECT_NEAR(pid.Update(5.0, 5.0, kTenthSecondUs), 10.0, kTolerance);
+  EXPECT_NEAR(pid.Update(5.0, 5.0, kTenthSecondUs), 10.0, kPidTolerance);
 }
 
 TEST(Pid, FirstUpdateHasNoDerivativeKick) {
@@ -103,18 +103,18 @@ TEST(Pid, FirstUpdateAfterResetHasNoDerivativeKick) {
   EXPECT_EQ(pid.Update(500.0, 0.0, kTenthSecondUs), 0.0);
   EXPECT_EQ(pid.d_value(), 0.0);
   // The history restarts from the re-engagement value.
-  EXPECT_NEAR(pid.Update(501.0, 0.0, kTenthSecondUs), -10.0, kTolerance);
+  EXPECT_NEAR(pid.Update(501.0, 0.0, kTenthSecondUs), -10.0, kPidTolerance);
 }
 
 TEST(Pid, ResetClearsTheIntegrator) {
   Pid pid;
   pid.SetGains(0.0, 1.0, 0.0);
   pid.Update(0.0, 1.0, kOneSecondUs);
-  ASSERT_NEAR(pid.integrator_state(), 1.0, kTolerance);
+  ASSERT_NEAR(pid.integrator_state(), 1.0, kPidTolerance);
   pid.Reset();
   EXPECT_EQ(pid.integrator_state(), 0.0);
   EXPECT_EQ(pid.i_value(), 0.0);
-  EXPECT_NEAR(pid.Update(0.0, 1.0, kOneSecondUs), 1.0, kTolerance);
+  EXPECT_NEAR(pid.Update(0.0, 1.0, kOneSecondUs), 1.0, kPidTolerance);
 }
 
 // --- the seed's dt guard
@@ -172,18 +172,18 @@ TEST(Pid, ITermClampedAtItsMaximum) {
   Pid pid;
   pid.SetGains(0.0, 1.0, 0.0);
   pid.SetITermLimits(-0.3, 0.5);
-  EXPECT_NEAR(pid.Update(0.0, 0.4, kOneSecondUs), 0.4, kTolerance);  // inside
-  EXPECT_NEAR(pid.Update(0.0, 0.4, kOneSecondUs), 0.5, kTolerance);  // 0.8 -> 0.5
-  EXPECT_NEAR(pid.i_value(), 0.5, kTolerance);
+  EXPECT_NEAR(pid.Update(0.0, 0.4, kOneSecondUs), 0.4, kPidTolerance);  // inside
+  EXPECT_NEAR(pid.Update(0.0, 0.4, kOneSecondUs), 0.5, kPidTolerance);  // 0.8 -> 0.5
+  EXPECT_NEAR(pid.i_value(), 0.5, kPidTolerance);
 }
 
 TEST(Pid, ITermClampedAtItsMinimum) {
   Pid pid;
   pid.SetGains(0.0, 1.0, 0.0);
   pid.SetITermLimits(-0.3, 0.5);
-  EXPECT_NEAR(pid.Update(0.0, -0.2, kOneSecondUs), -0.2, kTolerance);  // inside
-  EXPECT_NEAR(pid.Update(0.0, -0.2, kOneSecondUs), -0.3, kTolerance);  // -0.4 -> -0.3
-  EXPECT_NEAR(pid.i_value(), -0.3, kTolerance);
+  EXPECT_NEAR(pid.Update(0.0, -0.2, kOneSecondUs), -0.2, kPidTolerance);  // inside
+  EXPECT_NEAR(pid.Update(0.0, -0.2, kOneSecondUs), -0.3, kPidTolerance);  // -0.4 -> -0.3
+  EXPECT_NEAR(pid.i_value(), -0.3, kPidTolerance);
 }
 
 TEST(Pid, DTermClampedAtItsMaximum) {
@@ -191,9 +191,9 @@ TEST(Pid, DTermClampedAtItsMaximum) {
   pid.SetGains(0.0, 0.0, 1.0);
   pid.SetDTermLimits(-2.0, 3.0);
   pid.Update(0.0, 0.0, kOneSecondUs);
-  EXPECT_NEAR(pid.Update(-2.5, 0.0, kOneSecondUs), 2.5, kTolerance);   // inside
-  EXPECT_NEAR(pid.Update(-10.0, 0.0, kOneSecondUs), 3.0, kTolerance);  // 7.5 -> 3
-  EXPECT_NEAR(pid.d_value(), 3.0, kTolerance);
+  EXPECT_NEAR(pid.Update(-2.5, 0.0, kOneSecondUs), 2.5, kPidTolerance);   // inside
+  EXPECT_NEAR(pid.Update(-10.0, 0.0, kOneSecondUs), 3.0, kPidTolerance);  // 7.5 -> 3
+  EXPECT_NEAR(pid.d_value(), 3.0, kPidTolerance);
 }
 
 TEST(Pid, DTermClampedAtItsMinimum) {
@@ -201,27 +201,27 @@ TEST(Pid, DTermClampedAtItsMinimum) {
   pid.SetGains(0.0, 0.0, 1.0);
   pid.SetDTermLimits(-2.0, 3.0);
   pid.Update(0.0, 0.0, kOneSecondUs);
-  EXPECT_NEAR(pid.Update(1.5, 0.0, kOneSecondUs), -1.5, kTolerance);   // inside
-  EXPECT_NEAR(pid.Update(11.5, 0.0, kOneSecondUs), -2.0, kTolerance);  // -10 -> -2
-  EXPECT_NEAR(pid.d_value(), -2.0, kTolerance);
+  EXPECT_NEAR(pid.Update(1.5, 0.0, kOneSecondUs), -1.5, kPidTolerance);   // inside
+  EXPECT_NEAR(pid.Update(11.5, 0.0, kOneSecondUs), -2.0, kPidTolerance);  // -10 -> -2
+  EXPECT_NEAR(pid.d_value(), -2.0, kPidTolerance);
 }
 
 TEST(Pid, OutputClampedAtItsMaximum) {
   Pid pid;
   pid.SetGains(1.0, 0.0, 0.0);
   pid.SetOutputLimits(-4.0, 6.0);
-  EXPECT_NEAR(pid.Update(0.0, 5.0, kOneSecondUs), 5.0, kTolerance);
-  EXPECT_NEAR(pid.Update(0.0, 50.0, kOneSecondUs), 6.0, kTolerance);
+  EXPECT_NEAR(pid.Update(0.0, 5.0, kOneSecondUs), 5.0, kPidTolerance);
+  EXPECT_NEAR(pid.Update(0.0, 50.0, kOneSecondUs), 6.0, kPidTolerance);
   // The terms themselves are not clamped by the output limit.
-  EXPECT_NEAR(pid.p_value(), 50.0, kTolerance);
+  EXPECT_NEAR(pid.p_value(), 50.0, kPidTolerance);
 }
 
 TEST(Pid, OutputClampedAtItsMinimum) {
   Pid pid;
   pid.SetGains(1.0, 0.0, 0.0);
   pid.SetOutputLimits(-4.0, 6.0);
-  EXPECT_NEAR(pid.Update(0.0, -3.0, kOneSecondUs), -3.0, kTolerance);
-  EXPECT_NEAR(pid.Update(0.0, -50.0, kOneSecondUs), -4.0, kTolerance);
+  EXPECT_NEAR(pid.Update(0.0, -3.0, kOneSecondUs), -3.0, kPidTolerance);
+  EXPECT_NEAR(pid.Update(0.0, -50.0, kOneSecondUs), -4.0, kPidTolerance);
 }
 
 TEST(Pid, OutputClampAppliesToTheSumOfTheTerms) {
@@ -230,7 +230,7 @@ TEST(Pid, OutputClampAppliesToTheSumOfTheTerms) {
   pid.SetITermLimits(-10.0, 10.0);
   pid.SetOutputLimits(-1.0, 1.0);
   // P 0.8 and I 0.8: each inside the output limit, their sum is not.
-  EXPECT_NEAR(pid.Update(0.0, 0.8, kOneSecondUs), 1.0, kTolerance);
+  EXPECT_NEAR(pid.Update(0.0, 0.8, kOneSecondUs), 1.0, kPidTolerance);
 }
 
 // --- wind-up
@@ -245,7 +245,7 @@ int StepsToLeaveTheClampAfterSaturation(AntiWindup mode) {
   pid.SetITermLimits(-1.0, 1.0);
   pid.SetAntiWindup(mode);
   for (int step = 0; step < kSaturatedSteps; ++step) pid.Update(0.0, 10.0, kTenthSecondUs);
-  EXPECT_NEAR(pid.i_value(), 1.0, kTolerance);
+  EXPECT_NEAR(pid.i_value(), 1.0, kPidTolerance);
   for (int step = 1; step <= kGiveUpSteps; ++step) {
     pid.Update(0.0, -10.0, kTenthSecondUs);
     if (pid.i_value() < 1.0 - 1e-6) return step;
@@ -259,7 +259,7 @@ TEST(Pid, SeedAntiWindupLetsTheStateGrowWithoutBound) {
   pid.SetITermLimits(-1.0, 1.0);
   for (int step = 0; step < 100; ++step) pid.Update(0.0, 10.0, kTenthSecondUs);
   EXPECT_NEAR(pid.integrator_state(), 100.0, 1e-6);
-  EXPECT_NEAR(pid.i_value(), 1.0, kTolerance);
+  EXPECT_NEAR(pid.i_value(), 1.0, kPidTolerance);
 }
 
 TEST(Pid, SeedAntiWindupKeepsTheITermPinnedAsLongAsItWasSaturated) {
@@ -279,10 +279,10 @@ TEST(Pid, ClampStateHoldsTheStateAtTheClampOnBothSides) {
   pid.SetITermLimits(-0.4, 1.0);
   pid.SetAntiWindup(AntiWindup::kClampState);
   for (int step = 0; step < 50; ++step) pid.Update(0.0, 10.0, kTenthSecondUs);
-  EXPECT_NEAR(pid.integrator_state(), 0.5, kTolerance);  // 2 * 0.5 = the 1.0 clamp
+  EXPECT_NEAR(pid.integrator_state(), 0.5, kPidTolerance);  // 2 * 0.5 = the 1.0 clamp
   for (int step = 0; step < 50; ++step) pid.Update(0.0, -10.0, kTenthSecondUs);
-  EXPECT_NEAR(pid.integrator_state(), -0.2, kTolerance);  // 2 * -0.2 = the -0.4 clamp
-  EXPECT_NEAR(pid.i_value(), -0.4, kTolerance);
+  EXPECT_NEAR(pid.integrator_state(), -0.2, kPidTolerance);  // 2 * -0.2 = the -0.4 clamp
+  EXPECT_NEAR(pid.i_value(), -0.4, kPidTolerance);
 }
 
 TEST(Pid, ClampStateWithoutAnITermLimitIntegratesFreely) {

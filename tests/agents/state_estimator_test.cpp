@@ -17,7 +17,7 @@ using common::LocalFrame;
 using std::chrono::milliseconds;
 
 constexpr LatLon kLaunch{45.2, 7.6};
-constexpr double kTolerance = 1e-6;
+constexpr double kEstimateTolerance = 1e-6;
 
 SensorInputs Fix(LatLon where, double velocity_east_mps = 0.0, double velocity_north_mps = 0.0) {
   SensorInputs inputs;
@@ -53,8 +53,8 @@ TEST(StateEstimator, LocalFrameIsSetAtTheFirstFix) {
   EXPECT_EQ(estimator.frame()->origin().lon_deg, kLaunch.lon_deg);
   const Estimate& estimate = estimator.estimate();
   EXPECT_TRUE(estimate.has_position);
-  EXPECT_NEAR(estimate.position_local.east_m, 0.0, kTolerance);
-  EXPECT_NEAR(estimate.position_local.north_m, 0.0, kTolerance);
+  EXPECT_NEAR(estimate.position_local.east_m, 0.0, kEstimateTolerance);
+  EXPECT_NEAR(estimate.position_local.north_m, 0.0, kEstimateTolerance);
   EXPECT_NEAR(estimate.position.lat_deg, kLaunch.lat_deg, 1e-9);
   EXPECT_NEAR(estimate.position.lon_deg, kLaunch.lon_deg, 1e-9);
 
@@ -70,20 +70,20 @@ TEST(StateEstimator, DeadReckonsWithTheGpsVelocityBetweenFixes) {
   estimator.Update(Nanos{0}, Fix(kLaunch, 2.0, -1.0));
   estimator.Update(Nanos{milliseconds{500}}, {});
   const Estimate& estimate = estimator.estimate();
-  EXPECT_NEAR(estimate.position_local.east_m, 1.0, kTolerance);
-  EXPECT_NEAR(estimate.position_local.north_m, -0.5, kTolerance);
-  EXPECT_NEAR(estimate.velocity_east_mps, 2.0, kTolerance);
-  EXPECT_NEAR(estimate.velocity_north_mps, -1.0, kTolerance);
-  EXPECT_NEAR(estimate.gps_age_s, 0.5, kTolerance);
+  EXPECT_NEAR(estimate.position_local.east_m, 1.0, kEstimateTolerance);
+  EXPECT_NEAR(estimate.position_local.north_m, -0.5, kEstimateTolerance);
+  EXPECT_NEAR(estimate.velocity_east_mps, 2.0, kEstimateTolerance);
+  EXPECT_NEAR(estimate.velocity_north_mps, -1.0, kEstimateTolerance);
+  EXPECT_NEAR(estimate.gps_age_s, 0.5, kEstimateTolerance);
   // The geodetic position follows the local one.
   const EastNorth back = estimator.frame()->ToLocal(estimate.position);
   EXPECT_NEAR(back.east_m, 1.0, 1e-3);
   EXPECT_NEAR(back.north_m, -0.5, 1e-3);
 
   estimator.Update(Nanos{milliseconds{1'500}}, {});
-  EXPECT_NEAR(estimator.estimate().position_local.east_m, 3.0, kTolerance);
-  EXPECT_NEAR(estimator.estimate().position_local.north_m, -1.5, kTolerance);
-  EXPECT_NEAR(estimator.estimate().gps_age_s, 1.5, kTolerance);
+  EXPECT_NEAR(estimator.estimate().position_local.east_m, 3.0, kEstimateTolerance);
+  EXPECT_NEAR(estimator.estimate().position_local.north_m, -1.5, kEstimateTolerance);
+  EXPECT_NEAR(estimator.estimate().gps_age_s, 1.5, kEstimateTolerance);
 }
 
 TEST(StateEstimator, BlendsPartWayTowardANewFix) {
@@ -96,7 +96,7 @@ TEST(StateEstimator, BlendsPartWayTowardANewFix) {
   EXPECT_GT(position.east_m, 0.5);
   EXPECT_LT(position.east_m, 9.5);
   EXPECT_NEAR(position.north_m, 0.0, 1e-3);
-  EXPECT_NEAR(estimator.estimate().gps_age_s, 0.0, kTolerance);
+  EXPECT_NEAR(estimator.estimate().gps_age_s, 0.0, kEstimateTolerance);
   // And converges onto it when the fixes agree.
   for (int step = 2; step < 200; ++step) {
     estimator.Update(Nanos{milliseconds{100 * step}}, Fix(ten_metres_east));
@@ -157,20 +157,20 @@ TEST(StateEstimator, FirstBarometerReadingIsTheGround) {
   EXPECT_FALSE(estimator.estimate().has_altitude);
   estimator.Update(Nanos{0}, Baro(312.0));
   EXPECT_TRUE(estimator.estimate().has_altitude);
-  EXPECT_NEAR(estimator.estimate().altitude_m, 0.0, kTolerance);
+  EXPECT_NEAR(estimator.estimate().altitude_m, 0.0, kEstimateTolerance);
   estimator.Update(Nanos{milliseconds{100}}, Baro(315.5));
-  EXPECT_NEAR(estimator.estimate().altitude_m, 3.5, kTolerance);
+  EXPECT_NEAR(estimator.estimate().altitude_m, 3.5, kEstimateTolerance);
 }
 
 TEST(StateEstimator, ZeroAltitudeTakesTheLatestReading) {
   StateEstimator estimator;
   estimator.Update(Nanos{0}, Baro(312.0));
   estimator.Update(Nanos{milliseconds{100}}, Baro(309.0));  // pressure drifted
-  EXPECT_NEAR(estimator.estimate().altitude_m, -3.0, kTolerance);
+  EXPECT_NEAR(estimator.estimate().altitude_m, -3.0, kEstimateTolerance);
   estimator.ZeroAltitude();
-  EXPECT_NEAR(estimator.estimate().altitude_m, 0.0, kTolerance);
+  EXPECT_NEAR(estimator.estimate().altitude_m, 0.0, kEstimateTolerance);
   estimator.Update(Nanos{milliseconds{200}}, Baro(319.0));
-  EXPECT_NEAR(estimator.estimate().altitude_m, 10.0, kTolerance);
+  EXPECT_NEAR(estimator.estimate().altitude_m, 10.0, kEstimateTolerance);
 }
 
 TEST(StateEstimator, ZeroAltitudeBeforeAnyReadingLeavesTheFirstAsTheGround) {
@@ -178,7 +178,7 @@ TEST(StateEstimator, ZeroAltitudeBeforeAnyReadingLeavesTheFirstAsTheGround) {
   estimator.ZeroAltitude();
   EXPECT_FALSE(estimator.estimate().has_altitude);
   estimator.Update(Nanos{0}, Baro(250.0));
-  EXPECT_NEAR(estimator.estimate().altitude_m, 0.0, kTolerance);
+  EXPECT_NEAR(estimator.estimate().altitude_m, 0.0, kEstimateTolerance);
 }
 
 TEST(StateEstimator, ClimbRateSign) {
@@ -191,9 +191,9 @@ TEST(StateEstimator, ClimbRateSign) {
   }
   // Smoothed over about a second; after five it is nearly there.
   EXPECT_GT(climbing.estimate().climb_rate_mps, 0.9);
-  EXPECT_LT(climbing.estimate().climb_rate_mps, 1.0 + kTolerance);
+  EXPECT_LT(climbing.estimate().climb_rate_mps, 1.0 + kEstimateTolerance);
   EXPECT_LT(descending.estimate().climb_rate_mps, -1.8);
-  EXPECT_GT(descending.estimate().climb_rate_mps, -2.0 - kTolerance);
+  EXPECT_GT(descending.estimate().climb_rate_mps, -2.0 - kEstimateTolerance);
 }
 
 TEST(StateEstimator, ClimbRateIsZeroWhenLevel) {
@@ -201,7 +201,7 @@ TEST(StateEstimator, ClimbRateIsZeroWhenLevel) {
   for (int step = 0; step <= 20; ++step) {
     estimator.Update(Nanos{milliseconds{100 * step}}, Baro(321.0));
   }
-  EXPECT_NEAR(estimator.estimate().climb_rate_mps, 0.0, kTolerance);
+  EXPECT_NEAR(estimator.estimate().climb_rate_mps, 0.0, kEstimateTolerance);
 }
 
 // --- passthrough

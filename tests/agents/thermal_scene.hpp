@@ -48,6 +48,13 @@ struct ThermalScene {
   }
 };
 
+/// Ignites the cell at (500, 500) and burns it for a second: one hot cell. Its centre.
+inline sim2d::Vec2 LightOneCell(ThermalScene& scene) {
+  scene.fire.AddIgnition({sim2d::Vec2(500.0, 500.0), 0.0});
+  scene.fire.AdvanceTo(1.0);
+  return scene.fire.CellCenter(*scene.fire.CellAt({500.0, 500.0}));
+}
+
 inline sim2d::VehicleTruth Flying(sim2d::Vec2 position_m, double altitude_m,
                                   double heading_deg = 0.0, double pitch_deg = 0.0,
                                   double roll_deg = 0.0) {

@@ -23,6 +23,9 @@
 
 namespace fireswarm::hil::testing {
 
+/// The search altitude the closed-loop tests fly at, metres above ground.
+inline constexpr double kAltitudeM = 60.0;
+
 using common::Nanos;
 
 inline sim2d::VehicleConfig SimVehicleAt(int id, sim2d::Vec2 launch_m) {

@@ -18,7 +18,7 @@ using testing::Mission;
 using testing::OneVehicleWorld;
 using testing::WaypointAt;
 
-constexpr double kAltitudeM = 60.0;
+using testing::kAltitudeM;
 constexpr double kLaneLengthM = 1000.0;
 
 struct LaneResult {

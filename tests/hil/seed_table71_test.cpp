@@ -26,7 +26,7 @@ struct Attempt {
   double seed_error_m;  ///< seed Table 7.1
 };
 
-constexpr double kAltitudeM = 60.0;
+using testing::kAltitudeM;
 
 // The error (m) of the first fire report the server received, or a negative value
 // when none arrived.

@@ -19,7 +19,7 @@ using testing::Mission;
 using testing::OneVehicleWorld;
 using testing::WaypointAt;
 
-constexpr double kAltitudeM = 60.0;
+using testing::kAltitudeM;
 
 agents::VehicleConfig VehicleOne() {
   agents::VehicleConfig config;

@@ -8,19 +8,15 @@
 #include <stdexcept>
 #include <vector>
 
+#include "radio/sim_net.hpp"
+
 namespace fireswarm::radio {
 namespace {
 
 using std::chrono::milliseconds;
 
-constexpr Nanos kTurnaround = milliseconds(5);
-
-ChannelConfig TestConfig(double loss = 0.0) {
-  ChannelConfig config;
-  config.turnaround = kTurnaround;
-  config.loss = loss;
-  return config;
-}
+using sim_test::kTurnaround;
+using sim_test::TestChannelConfig;
 
 // What one radio heard, and when.
 struct Heard {
@@ -64,7 +60,7 @@ struct RecordingVehicle {
 
 TEST(ChannelLoop, MasterIsRadioZeroAndVehiclesFollowInOrder) {
   ScriptedMaster master;
-  ChannelLoop loop(TestConfig(), 1, MasterOf(master));
+  ChannelLoop loop(TestChannelConfig(), 1, MasterOf(master));
   RecordingVehicle a;
   RecordingVehicle b;
   EXPECT_EQ(loop.AddVehicle(a.AsStep()), 1U);
@@ -74,7 +70,7 @@ TEST(ChannelLoop, MasterIsRadioZeroAndVehiclesFollowInOrder) {
 
 TEST(ChannelLoop, DeliversTheMastersBurstsInOrderToEveryVehicleAtTheirEnd) {
   ScriptedMaster master;
-  ChannelLoop loop(TestConfig(), 1, MasterOf(master));
+  ChannelLoop loop(TestChannelConfig(), 1, MasterOf(master));
   RecordingVehicle a;
   RecordingVehicle b;
   loop.AddVehicle(a.AsStep());
@@ -96,7 +92,7 @@ TEST(ChannelLoop, DeliversTheMastersBurstsInOrderToEveryVehicleAtTheirEnd) {
 TEST(ChannelLoop, AReplyReachesTheMasterAndTheOtherVehiclesButNotItsSender) {
   ScriptedMaster master;
   master.second.clear();  // an empty burst puts nothing on the air
-  ChannelLoop loop(TestConfig(), 1, MasterOf(master));
+  ChannelLoop loop(TestChannelConfig(), 1, MasterOf(master));
   RecordingVehicle quiet;
   RecordingVehicle talker;
   talker.reply = {9, 8, 7, 6};
@@ -115,7 +111,7 @@ TEST(ChannelLoop, AReplyReachesTheMasterAndTheOtherVehiclesButNotItsSender) {
 TEST(ChannelLoop, TwoVehiclesAnsweringAtOnceCollideAndNobodyHearsThem) {
   ScriptedMaster master;
   master.second.clear();
-  ChannelLoop loop(TestConfig(), 1, MasterOf(master));
+  ChannelLoop loop(TestChannelConfig(), 1, MasterOf(master));
   RecordingVehicle a;
   RecordingVehicle b;
   a.reply = {1, 1, 1};
@@ -132,7 +128,7 @@ TEST(ChannelLoop, TwoVehiclesAnsweringAtOnceCollideAndNobodyHearsThem) {
 
 TEST(ChannelLoop, NextEventTimeIsTheEarlierOfWakeupAndTransmissionEnd) {
   ScriptedMaster master;
-  ChannelLoop loop(TestConfig(), 1, MasterOf(master));
+  ChannelLoop loop(TestChannelConfig(), 1, MasterOf(master));
   EXPECT_EQ(loop.NextEventTime(), milliseconds(10));
   loop.StepAt(milliseconds(10));
   // The master sleeps now: the end of its first burst is next.
@@ -144,7 +140,7 @@ TEST(ChannelLoop, NextEventTimeIsTheEarlierOfWakeupAndTransmissionEnd) {
 TEST(ChannelLoop, AWakeupInThePastIsDueAtTheChannelsTime) {
   ScriptedMaster master;
   master.wakeup = Nanos::max();
-  ChannelLoop loop(TestConfig(), 1, MasterOf(master));
+  ChannelLoop loop(TestChannelConfig(), 1, MasterOf(master));
   loop.RunUntil(milliseconds(30));
   master.wakeup = milliseconds(10);  // a request queued between calls
   EXPECT_EQ(loop.NextEventTime(), milliseconds(30));
@@ -155,7 +151,7 @@ TEST(ChannelLoop, AWakeupInThePastIsDueAtTheChannelsTime) {
 
 TEST(ChannelLoop, RunUntilStopsAtTheEndAndLeavesLaterEventsForLater) {
   ScriptedMaster master;
-  ChannelLoop loop(TestConfig(), 1, MasterOf(master));
+  ChannelLoop loop(TestChannelConfig(), 1, MasterOf(master));
   RecordingVehicle a;
   loop.AddVehicle(a.AsStep());
   loop.RunUntil(milliseconds(9));
@@ -167,7 +163,7 @@ TEST(ChannelLoop, RunUntilStopsAtTheEndAndLeavesLaterEventsForLater) {
 }
 
 TEST(ChannelLoop, AWakeupStuckAtOneInstantThrowsInsteadOfHanging) {
-  ChannelLoop loop(TestConfig(), 1,
+  ChannelLoop loop(TestChannelConfig(), 1,
                    LoopMaster{[] { return milliseconds(1); },
                               [](Nanos /*now*/, std::span<const std::uint8_t> /*received*/) {
                                 return std::vector<Burst>{};
@@ -178,7 +174,7 @@ TEST(ChannelLoop, AWakeupStuckAtOneInstantThrowsInsteadOfHanging) {
 TEST(ChannelLoop, SameSeedSameCallsSameBytesAndTimes) {
   const auto run = [](std::uint64_t seed) {
     ScriptedMaster master;
-    ChannelLoop loop(TestConfig(/*loss=*/0.5), seed, MasterOf(master));
+    ChannelLoop loop(TestChannelConfig(/*loss=*/0.5), seed, MasterOf(master));
     std::vector<RecordingVehicle> vehicles(8);
     for (RecordingVehicle& v : vehicles) {
       v.reply = {7};

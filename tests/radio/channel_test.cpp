@@ -12,19 +12,16 @@
 #include <string>
 #include <vector>
 
+#include "radio/sim_net.hpp"
+
 namespace fireswarm::radio {
 namespace {
 
 using std::chrono::milliseconds;
 
-constexpr Nanos kTurnaround = milliseconds(5);
+using sim_test::kTurnaround;
+using sim_test::TestChannelConfig;
 constexpr Nanos kHundredBytes{17'361'112};  // 100 bytes at 57,600 baud 8N1
-
-ChannelConfig TestConfig() {
-  ChannelConfig config;
-  config.turnaround = kTurnaround;
-  return config;
-}
 
 std::vector<std::uint8_t> Pattern(std::size_t size, std::uint8_t first = 0) {
   std::vector<std::uint8_t> bytes(size);
@@ -50,7 +47,7 @@ double FiveSigma(double n, double p) {
 }
 
 TEST(SharedChannel, HundredByteFrameOccupiesExactAirtime) {
-  SharedChannel channel(TestConfig(), 1);
+  SharedChannel channel(TestChannelConfig(), 1);
   const RadioId sender = channel.AddRadio();
   channel.AddRadio();
   EXPECT_EQ(channel.AirtimeOf(100), kHundredBytes);
@@ -60,7 +57,7 @@ TEST(SharedChannel, HundredByteFrameOccupiesExactAirtime) {
 }
 
 TEST(SharedChannel, DeliversAtTheEndTimeNotBefore) {
-  SharedChannel channel(TestConfig(), 1);
+  SharedChannel channel(TestChannelConfig(), 1);
   const RadioId sender = channel.AddRadio();
   const RadioId receiver = channel.AddRadio();
   const Nanos end = channel.Transmit(sender, Nanos{0}, kTurnaround, Pattern(100));
@@ -74,7 +71,7 @@ TEST(SharedChannel, DeliversAtTheEndTimeNotBefore) {
 }
 
 TEST(SharedChannel, NextEventTimeIsTheEarliestEndAndInboxFollowsEndOrder) {
-  SharedChannel channel(TestConfig(), 1);
+  SharedChannel channel(TestChannelConfig(), 1);
   const RadioId late = channel.AddRadio();
   const RadioId early = channel.AddRadio();
   const RadioId listener = channel.AddRadio();
@@ -92,7 +89,7 @@ TEST(SharedChannel, NextEventTimeIsTheEarliestEndAndInboxFollowsEndOrder) {
 }
 
 TEST(SharedChannel, StartBeforeTheTurnaroundThrows) {
-  SharedChannel channel(TestConfig(), 1);
+  SharedChannel channel(TestChannelConfig(), 1);
   const RadioId radio = channel.AddRadio();
   const Nanos now = milliseconds(10);
   channel.AdvanceTo(now);
@@ -102,7 +99,7 @@ TEST(SharedChannel, StartBeforeTheTurnaroundThrows) {
 }
 
 TEST(SharedChannel, TransmittingRadioAppendsBackToBackWithoutTurnaround) {
-  SharedChannel channel(TestConfig(), 1);
+  SharedChannel channel(TestChannelConfig(), 1);
   const RadioId sender = channel.AddRadio();
   const RadioId receiver = channel.AddRadio();
   const Nanos first_end = channel.Transmit(sender, Nanos{0}, kTurnaround, Pattern(100));
@@ -120,7 +117,7 @@ TEST(SharedChannel, TransmittingRadioAppendsBackToBackWithoutTurnaround) {
 }
 
 TEST(SharedChannel, TimeBeforeTheChannelTimeThrows) {
-  SharedChannel channel(TestConfig(), 1);
+  SharedChannel channel(TestChannelConfig(), 1);
   const RadioId radio = channel.AddRadio();
   channel.AdvanceTo(milliseconds(20));
   EXPECT_THROW(channel.Transmit(radio, milliseconds(10), milliseconds(30), Pattern(5)),
@@ -131,14 +128,14 @@ TEST(SharedChannel, TimeBeforeTheChannelTimeThrows) {
 }
 
 TEST(SharedChannel, EmptyBurstPutsNothingOnTheAir) {
-  SharedChannel channel(TestConfig(), 1);
+  SharedChannel channel(TestChannelConfig(), 1);
   const RadioId radio = channel.AddRadio();
   EXPECT_EQ(channel.Transmit(radio, Nanos{0}, kTurnaround, {}), kTurnaround);
   EXPECT_EQ(channel.NextEventTime(), std::nullopt);
 }
 
 TEST(SharedChannel, OverlappingTransmissionsAreLostToEveryReceiver) {
-  SharedChannel channel(TestConfig(), 1);
+  SharedChannel channel(TestChannelConfig(), 1);
   const RadioId a = channel.AddRadio();
   const RadioId b = channel.AddRadio();
   const RadioId c = channel.AddRadio();
@@ -153,7 +150,7 @@ TEST(SharedChannel, OverlappingTransmissionsAreLostToEveryReceiver) {
 }
 
 TEST(SharedChannel, TouchingTransmissionsDoNotCollide) {
-  SharedChannel channel(TestConfig(), 1);
+  SharedChannel channel(TestChannelConfig(), 1);
   const RadioId a = channel.AddRadio();
   const RadioId b = channel.AddRadio();
   const RadioId c = channel.AddRadio();
@@ -167,7 +164,7 @@ TEST(SharedChannel, TouchingTransmissionsDoNotCollide) {
 }
 
 TEST(SharedChannel, ThreeWayOverlapsLoseAllThree) {
-  SharedChannel channel(TestConfig(), 1);
+  SharedChannel channel(TestChannelConfig(), 1);
   const RadioId a = channel.AddRadio();
   const RadioId b = channel.AddRadio();
   const RadioId c = channel.AddRadio();
@@ -190,7 +187,7 @@ TEST(SharedChannel, ThreeWayOverlapsLoseAllThree) {
 }
 
 TEST(SharedChannel, RadioTransmittingDuringATransmissionDoesNotHearIt) {
-  SharedChannel channel(TestConfig(), 1);
+  SharedChannel channel(TestChannelConfig(), 1);
   const RadioId long_talker = channel.AddRadio();
   const RadioId short_talker = channel.AddRadio();
   const Nanos end = channel.Transmit(long_talker, Nanos{0}, kTurnaround, Pattern(200));
@@ -202,7 +199,7 @@ TEST(SharedChannel, RadioTransmittingDuringATransmissionDoesNotHearIt) {
 }
 
 TEST(SharedChannel, TransmitterDoesNotHearItself) {
-  SharedChannel channel(TestConfig(), 1);
+  SharedChannel channel(TestChannelConfig(), 1);
   const RadioId sender = channel.AddRadio();
   const RadioId receiver = channel.AddRadio();
   SendAndResolve(channel, sender, Pattern(30));
@@ -212,7 +209,7 @@ TEST(SharedChannel, TransmitterDoesNotHearItself) {
 }
 
 TEST(SharedChannel, LossFractionMatchesConfiguredLoss) {
-  ChannelConfig config = TestConfig();
+  ChannelConfig config = TestChannelConfig();
   config.loss = 0.1;
   SharedChannel channel(config, 42);
   const RadioId sender = channel.AddRadio();
@@ -227,7 +224,7 @@ TEST(SharedChannel, LossFractionMatchesConfiguredLoss) {
 }
 
 TEST(SharedChannel, BitErrorsMatchConfiguredRate) {
-  ChannelConfig config = TestConfig();
+  ChannelConfig config = TestChannelConfig();
   config.bit_error_rate = 1e-3;
   SharedChannel channel(config, 7);
   const RadioId sender = channel.AddRadio();
@@ -255,7 +252,7 @@ TEST(SharedChannel, BitErrorsMatchConfiguredRate) {
 }
 
 TEST(SharedChannel, BitErrorRateOneInvertsEveryBit) {
-  ChannelConfig config = TestConfig();
+  ChannelConfig config = TestChannelConfig();
   config.bit_error_rate = 1.0;
   SharedChannel channel(config, 7);
   const RadioId sender = channel.AddRadio();
@@ -266,7 +263,7 @@ TEST(SharedChannel, BitErrorRateOneInvertsEveryBit) {
 }
 
 TEST(SharedChannel, RangeModelLosesMoreWithDistance) {
-  ChannelConfig config = TestConfig();
+  ChannelConfig config = TestChannelConfig();
   config.range.clean_range_m = 100.0;
   config.range.max_range_m = 300.0;
   SharedChannel channel(config, 3);
@@ -294,7 +291,7 @@ struct RunResult {
 
 // A busy fleet: loss, bit errors, range, collisions from free-running radios.
 RunResult RunFleet(std::uint64_t seed) {
-  ChannelConfig config = TestConfig();
+  ChannelConfig config = TestChannelConfig();
   config.loss = 0.2;
   config.bit_error_rate = 1e-3;
   config.range.clean_range_m = 50.0;
@@ -338,7 +335,7 @@ TEST(SharedChannel, SameSeedAndInputsGiveIdenticalResults) {
 }
 
 TEST(SharedChannel, BusyTimeIsTheUnionOfTransmissions) {
-  SharedChannel channel(TestConfig(), 1);
+  SharedChannel channel(TestChannelConfig(), 1);
   const RadioId a = channel.AddRadio();
   const RadioId b = channel.AddRadio();
   const RadioId c = channel.AddRadio();
@@ -358,7 +355,7 @@ TEST(SharedChannel, BusyTimeIsTheUnionOfTransmissions) {
 }
 
 TEST(SharedChannel, AirObserverSeesEveryResolvedTransmissionOnce) {
-  SharedChannel channel(TestConfig(), 1);
+  SharedChannel channel(TestChannelConfig(), 1);
   struct Seen {
     RadioId transmitter;
     Nanos start;
@@ -396,7 +393,7 @@ TEST(SharedChannel, AirObserverSeesEveryResolvedTransmissionOnce) {
 }
 
 TEST(SharedChannel, AirObserverMayTransmit) {
-  SharedChannel channel(TestConfig(), 1);
+  SharedChannel channel(TestChannelConfig(), 1);
   const RadioId a = channel.AddRadio();
   const RadioId echo = channel.AddRadio();
   channel.SetAirObserver([&](const AirRecord& record) {
@@ -411,7 +408,7 @@ TEST(SharedChannel, AirObserverMayTransmit) {
 }
 
 // Expects the configuration to be refused with a message naming `field`.
-void ExpectRejected(const ChannelConfig& config, const std::string& field) {
+void ExpectConfigRejected(const ChannelConfig& config, const std::string& field) {
   try {
     config.Validate();
     ADD_FAILURE() << "accepted a bad " << field;
@@ -426,30 +423,30 @@ TEST(ChannelConfig, ValidateNamesTheBadField) {
   constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
   ChannelConfig config;
   config.baud = 0;
-  ExpectRejected(config, "baud");
+  ExpectConfigRejected(config, "baud");
   config = {};
   config.bits_per_byte = 7;
-  ExpectRejected(config, "bits_per_byte");
+  ExpectConfigRejected(config, "bits_per_byte");
   config = {};
   config.turnaround = Nanos{-1};
-  ExpectRejected(config, "turnaround");
+  ExpectConfigRejected(config, "turnaround");
   for (const double bad : {-0.1, 1.5, kNaN}) {
     config = {};
     config.loss = bad;
-    ExpectRejected(config, "loss");
+    ExpectConfigRejected(config, "loss");
     config = {};
     config.bit_error_rate = bad;
-    ExpectRejected(config, "bit_error_rate");
+    ExpectConfigRejected(config, "bit_error_rate");
   }
   config = {};
   config.range.clean_range_m = kNaN;
-  ExpectRejected(config, "clean_range_m");
+  ExpectConfigRejected(config, "clean_range_m");
   config = {};
   config.range.clean_range_m = 200.0;
   config.range.max_range_m = 100.0;
-  ExpectRejected(config, "max_range_m");
+  ExpectConfigRejected(config, "max_range_m");
   config.range.max_range_m = kNaN;
-  ExpectRejected(config, "max_range_m");
+  ExpectConfigRejected(config, "max_range_m");
 }
 
 }  // namespace

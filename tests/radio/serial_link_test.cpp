@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "fireswarm/radio/link.hpp"
+#include "radio/io_link_testing.hpp"
 
 namespace fireswarm::radio {
 namespace {
@@ -22,8 +23,9 @@ namespace {
 using std::chrono::milliseconds;
 using Clock = std::chrono::steady_clock;
 
-constexpr unsigned kBaud = 57'600;
-constexpr auto kDeadline = std::chrono::seconds(5);
+constexpr unsigned kModemBaud = 57'600;
+using io_link_testing::kDeadline;
+using io_link_testing::ReceiveFrom;
 
 // Every byte value, including XON/XOFF, CR and NL, which a cooked tty would eat.
 std::vector<std::uint8_t> EveryByteValue(std::size_t size) {
@@ -99,19 +101,9 @@ class PseudoTerminal {
   std::string slave_name_;
 };
 
-// Collects `size` bytes from the link, waiting with WaitReadable deadlines.
-std::vector<std::uint8_t> ReceiveFrom(IoLink& link, std::size_t size) {
-  std::vector<std::uint8_t> bytes;
-  const auto deadline = Clock::now() + kDeadline;
-  while (bytes.size() < size && Clock::now() < deadline) {
-    if (link.WaitReadable(deadline - Clock::now())) link.Receive(Nanos{0}, bytes);
-  }
-  return bytes;
-}
-
 TEST(SerialLink, ExchangesBytesBothWays) {
   PseudoTerminal modem;
-  const auto link = OpenSerialLink(modem.slave_name(), kBaud);
+  const auto link = OpenSerialLink(modem.slave_name(), kModemBaud);
   const std::vector<std::uint8_t> to_modem{0x70, 0x96, 0xAC, 0x01, 0x10, 0x00, 0x11};
   link->Transmit(Nanos{0}, Nanos{0}, to_modem);
   EXPECT_EQ(modem.Read(to_modem.size()), to_modem);
@@ -123,7 +115,7 @@ TEST(SerialLink, ExchangesBytesBothWays) {
 
 TEST(SerialLink, CarriesALongBurstIntactBothWays) {
   PseudoTerminal modem;
-  const auto link = OpenSerialLink(modem.slave_name(), kBaud);
+  const auto link = OpenSerialLink(modem.slave_name(), kModemBaud);
   const std::vector<std::uint8_t> burst = EveryByteValue(1'500);
   link->Transmit(Nanos{0}, Nanos{0}, burst);
   EXPECT_EQ(modem.Read(burst.size()), burst);
@@ -133,7 +125,7 @@ TEST(SerialLink, CarriesALongBurstIntactBothWays) {
 
 TEST(SerialLink, ReceiveNeverBlocksAndWaitReadableKeepsItsDeadline) {
   PseudoTerminal modem;
-  const auto link = OpenSerialLink(modem.slave_name(), kBaud);
+  const auto link = OpenSerialLink(modem.slave_name(), kModemBaud);
   std::vector<std::uint8_t> out;
   link->Receive(Nanos{0}, out);
   EXPECT_TRUE(out.empty());
@@ -146,7 +138,7 @@ TEST(SerialLink, ReceiveNeverBlocksAndWaitReadableKeepsItsDeadline) {
 
 TEST(SerialLink, ConfiguresRaw8N1AtTheBaud) {
   PseudoTerminal modem;
-  const auto link = OpenSerialLink(modem.slave_name(), kBaud);
+  const auto link = OpenSerialLink(modem.slave_name(), kModemBaud);
   termios settings{};
   ASSERT_EQ(::tcgetattr(modem.slave_fd(), &settings), 0);
   EXPECT_EQ(::cfgetospeed(&settings), B57600);
@@ -158,7 +150,7 @@ TEST(SerialLink, ConfiguresRaw8N1AtTheBaud) {
 
 TEST(SerialLink, HangUpIsAnErrorNamingTheDevice) {
   PseudoTerminal modem;
-  const auto link = OpenSerialLink(modem.slave_name(), kBaud);
+  const auto link = OpenSerialLink(modem.slave_name(), kModemBaud);
   modem.CloseMaster();
   try {
     link->WaitReadable(kDeadline);
@@ -182,7 +174,7 @@ TEST(SerialLink, UnsupportedBaudIsRejectedByName) {
 // Expects OpenSerialLink(device) to fail with a message naming the device.
 void ExpectFailsNaming(const std::string& device) {
   try {
-    OpenSerialLink(device, kBaud);
+    OpenSerialLink(device, kModemBaud);
     ADD_FAILURE() << "opened " << device;
   } catch (const std::runtime_error& error) {
     EXPECT_NE(std::string(error.what()).find(device), std::string::npos) << error.what();

@@ -21,6 +21,15 @@ constexpr ChecksumMode kChecksum = ChecksumMode::kCrc16;
 constexpr int kBaud = 57'600;
 constexpr Nanos kTurnaround = milliseconds(5);
 
+/// The channel every radio test shares: kBaud, kTurnaround and `loss`.
+inline ChannelConfig TestChannelConfig(double loss = 0.0) {
+  ChannelConfig config;
+  config.baud = kBaud;
+  config.turnaround = kTurnaround;
+  config.loss = loss;
+  return config;
+}
+
 class CountingHandler final : public VehicleRequestHandler {
  public:
   CommandResult OnCommand(const Command& /*command*/) override {
@@ -65,7 +74,7 @@ class SimNet {
   SimNet(const SchedulerConfig& config, int vehicles, double loss = 0.0,
          std::span<VehicleRequestHandler* const> handlers = {})
       : server_(config),
-        loop_(ChannelFor(loss), /*seed=*/7,
+        loop_(TestChannelConfig(loss), /*seed=*/7,
               LoopMaster{[this] { return server_.NextWakeup(); },
                          [this](Nanos now, std::span<const std::uint8_t> received) {
                            return StepServer(now, received);
@@ -106,14 +115,6 @@ class SimNet {
   }
 
  private:
-  static ChannelConfig ChannelFor(double loss) {
-    ChannelConfig c;
-    c.baud = kBaud;
-    c.turnaround = kTurnaround;
-    c.loss = loss;
-    return c;
-  }
-
   // The hooks keep a dropped burst off the air; the events are collected after
   // every step so that their order is the scheduler's.
   std::vector<Burst> StepServer(Nanos now, std::span<const std::uint8_t> received) {

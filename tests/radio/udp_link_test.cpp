@@ -11,32 +11,25 @@
 #include <string>
 #include <vector>
 
+#include "radio/io_link_testing.hpp"
+
 namespace fireswarm::radio {
 namespace {
 
 using std::chrono::milliseconds;
 using Clock = std::chrono::steady_clock;
 
-constexpr auto kDeadline = std::chrono::seconds(5);
+using io_link_testing::kDeadline;
+using io_link_testing::ReceiveFrom;
 
 std::string Loopback(std::uint16_t port) {
   return "127.0.0.1:" + std::to_string(port);
 }
 
-std::vector<std::uint8_t> Burst(std::size_t size, std::uint8_t seed) {
+std::vector<std::uint8_t> SeededBytes(std::size_t size, std::uint8_t seed) {
   std::vector<std::uint8_t> bytes(size);
   for (std::size_t i = 0; i < size; ++i)
     bytes[i] = static_cast<std::uint8_t>((i * 13 + seed) & 0xFF);
-  return bytes;
-}
-
-// Collects `size` bytes from the link, waiting with WaitReadable deadlines.
-std::vector<std::uint8_t> ReceiveFrom(IoLink& link, std::size_t size) {
-  std::vector<std::uint8_t> bytes;
-  const auto deadline = Clock::now() + kDeadline;
-  while (bytes.size() < size && Clock::now() < deadline) {
-    if (link.WaitReadable(deadline - Clock::now())) link.Receive(Nanos{0}, bytes);
-  }
   return bytes;
 }
 
@@ -61,20 +54,20 @@ TEST(UdpLink, ExchangesBurstsBothWays) {
   LinkPair links;
   std::vector<std::uint8_t> sent;
   for (std::uint8_t i = 0; i < 3; ++i) {
-    const std::vector<std::uint8_t> burst = Burst(20 + i, i);
+    const std::vector<std::uint8_t> burst = SeededBytes(20 + i, i);
     links.a.Transmit(Nanos{0}, Nanos{0}, burst);
     sent.insert(sent.end(), burst.begin(), burst.end());
   }
   EXPECT_EQ(ReceiveFrom(links.b, sent.size()), sent);
 
-  const std::vector<std::uint8_t> reply = Burst(7, 99);
+  const std::vector<std::uint8_t> reply = SeededBytes(7, 99);
   links.b.Transmit(Nanos{0}, Nanos{0}, reply);
   EXPECT_EQ(ReceiveFrom(links.a, reply.size()), reply);
 }
 
 TEST(UdpLink, CarriesALongBurstInOneDatagram) {
   LinkPair links;
-  const std::vector<std::uint8_t> burst = Burst(4'000, 1);
+  const std::vector<std::uint8_t> burst = SeededBytes(4'000, 1);
   links.b.Transmit(Nanos{0}, Nanos{0}, burst);
   ASSERT_TRUE(links.a.WaitReadable(kDeadline));
   std::vector<std::uint8_t> received;
@@ -97,19 +90,20 @@ TEST(UdpLink, ReceiveNeverBlocksAndWaitReadableKeepsItsDeadline) {
 TEST(UdpLink, OpenUdpLinkGivesAWorkingIoLink) {
   UdpLink peer("127.0.0.1:0", Loopback(9));
   const std::unique_ptr<IoLink> link = OpenUdpLink("127.0.0.1:0", Loopback(peer.local_port()));
-  link->Transmit(Nanos{0}, Nanos{0}, Burst(5, 0));
-  EXPECT_EQ(ReceiveFrom(peer, 5), Burst(5, 0));
+  link->Transmit(Nanos{0}, Nanos{0}, SeededBytes(5, 0));
+  EXPECT_EQ(ReceiveFrom(peer, 5), SeededBytes(5, 0));
 }
 
 TEST(UdpLink, OversizedBurstIsRejected) {
   LinkPair links;
-  EXPECT_THROW(links.a.Transmit(Nanos{0}, Nanos{0}, Burst(UdpLink::kMaxBurstBytes + 1, 0)),
+  EXPECT_THROW(links.a.Transmit(Nanos{0}, Nanos{0}, SeededBytes(UdpLink::kMaxBurstBytes + 1, 0)),
                std::invalid_argument);
 }
 
 // Expects opening with these endpoints to throw `Error` naming `named`.
 template <typename Error>
-void ExpectRejected(const std::string& local, const std::string& remote, const std::string& named) {
+void ExpectAddressesRejected(const std::string& local, const std::string& remote,
+                             const std::string& named) {
   try {
     UdpLink link(local, remote);
     ADD_FAILURE() << "opened " << local << " -> " << remote;
@@ -122,10 +116,11 @@ TEST(UdpLink, MalformedEndpointsAreNamed) {
   const std::string good = "127.0.0.1:0";
   for (const std::string bad : {"127.0.0.1", "127.0.0.1:", "127.0.0.1:abc", "127.0.0.1:70000",
                                 "127.0.0.1:-1", "::1:5000"}) {
-    ExpectRejected<std::invalid_argument>(bad, Loopback(9), bad);
-    ExpectRejected<std::invalid_argument>(good, bad, bad);
+    ExpectAddressesRejected<std::invalid_argument>(bad, Loopback(9), bad);
+    ExpectAddressesRejected<std::invalid_argument>(good, bad, bad);
   }
-  ExpectRejected<std::invalid_argument>(good, "127.0.0.1:0", "127.0.0.1:0");  // cannot send to 0
+  ExpectAddressesRejected<std::invalid_argument>(good, "127.0.0.1:0",
+                                                 "127.0.0.1:0");  // cannot send to 0
   UdpLink link(good, Loopback(9));
   EXPECT_THROW(link.SetRemote("nowhere"), std::invalid_argument);
 }
@@ -133,7 +128,7 @@ TEST(UdpLink, MalformedEndpointsAreNamed) {
 TEST(UdpLink, PortInUseIsNamed) {
   UdpLink first("127.0.0.1:0", Loopback(9));
   const std::string taken = Loopback(first.local_port());
-  ExpectRejected<std::runtime_error>(taken, Loopback(9), taken);
+  ExpectAddressesRejected<std::runtime_error>(taken, Loopback(9), taken);
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "fireswarm/radio/parser.hpp"
+#include "radio/sim_net.hpp"
 
 namespace fireswarm::radio {
 namespace {
@@ -17,8 +18,8 @@ using std::chrono::milliseconds;
 constexpr std::uint8_t kMe = 3;
 constexpr std::uint8_t kOther = 4;
 constexpr ChecksumMode kMode = ChecksumMode::kCrc16;
-constexpr int kBaud = 57'600;
-constexpr Nanos kTurnaround = milliseconds(5);
+using sim_test::kBaud;
+using sim_test::kTurnaround;
 constexpr Nanos kNow = milliseconds(1'000);
 
 class CountingHandler final : public VehicleRequestHandler {

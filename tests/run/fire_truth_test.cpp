@@ -68,9 +68,8 @@ TEST(FireHotCentre, IgnoresCellsCooledBelowWhatACameraSees) {
 
 // The small area with one fire and `random_fires` (a YAML mapping).
 Scenario SmallArea(const std::string& random_fires) {
-  return testing::SmallArea(
-      "fires:\n  - {lat: 45.00230, lon: 7.00480, start_s: 0}\nrandom_fires: " + random_fires +
-      "\n");
+  return test::SmallArea("fires:\n  - {lat: 45.00230, lon: 7.00480, start_s: 0}\nrandom_fires: " +
+                         random_fires + "\n");
 }
 
 TEST(ExpandFires, RandomFiresKeepTheirSpacingFromEveryFire) {

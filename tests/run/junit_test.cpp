@@ -50,7 +50,7 @@ Report TestReport() {
   return report;
 }
 
-XmlDocument Parsed(const std::string& xml) {
+XmlDocument ParsedJunit(const std::string& xml) {
   XmlDocument doc = ParseXml(xml);
   EXPECT_EQ(doc.error, "") << xml;
   return doc;
@@ -59,7 +59,7 @@ XmlDocument Parsed(const std::string& xml) {
 TEST(Junit, OneTestCasePerExpectationWithMatchingCounts) {
   const std::string xml = JunitXml(TestReport());
   EXPECT_THAT(xml, testing::StartsWith("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"));
-  const XmlDocument doc = Parsed(xml);
+  const XmlDocument doc = ParsedJunit(xml);
   ASSERT_EQ(doc.Find("testsuites").size(), 1U);
   const auto suites = doc.Find("testsuite");
   ASSERT_EQ(suites.size(), 1U);
@@ -90,7 +90,7 @@ TEST(Junit, OneTestCasePerExpectationWithMatchingCounts) {
 }
 
 TEST(Junit, FailureCarriesValueLimitAndDetail) {
-  const XmlDocument doc = Parsed(JunitXml(TestReport()));
+  const XmlDocument doc = ParsedJunit(JunitXml(TestReport()));
   const auto failures = doc.Find("failure");
   ASSERT_EQ(failures.size(), 1U);
   const XmlElement& failure = *failures[0];
@@ -110,7 +110,7 @@ TEST(Junit, FailureCarriesValueLimitAndDetail) {
 TEST(Junit, NoExpectationsIsOnePassingScenarioRunsCase) {
   Report report = TestReport();
   report.expect.clear();
-  const XmlDocument doc = Parsed(JunitXml(report));
+  const XmlDocument doc = ParsedJunit(JunitXml(report));
   const auto cases = doc.Find("testcase");
   ASSERT_EQ(cases.size(), 1U);
   EXPECT_EQ(cases[0]->Attribute("name"), "scenario_runs");
@@ -126,7 +126,7 @@ TEST(Junit, EscapesNamesAndMessages) {
   report.expect[1].detail = "x < y && 'z' > \"w\"\nsecond line\x01";
   const std::string xml = JunitXml(report);
   EXPECT_THAT(xml, Not(HasSubstr("a<b")));
-  const XmlDocument doc = Parsed(xml);
+  const XmlDocument doc = ParsedJunit(xml);
   EXPECT_EQ(doc.Find("testsuite")[0]->Attribute("name"), "a<b & \"c\"");
   EXPECT_EQ(doc.Find("testcase")[0]->Attribute("classname"), "fireswarm.run.a<b & \"c\"");
   // The newline survives in the attribute (as &#10;); the control character, which

@@ -250,7 +250,7 @@ TEST(RunScenario, FailedExpectationIsReported) {
   EXPECT_FALSE(report.expect[1].detail.empty());
 }
 
-using testing::SmallArea;
+using test::SmallArea;
 
 std::vector<std::pair<double, double>> TruePositions(const Report& report) {
   std::vector<std::pair<double, double>> out;

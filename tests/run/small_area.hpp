@@ -6,7 +6,7 @@
 
 #include "fireswarm/run/scenario.hpp"
 
-namespace fireswarm::run::testing {
+namespace fireswarm::run::test {
 
 inline Scenario SmallArea(const std::string& extra) {
   const std::string text = R"(
@@ -22,4 +22,4 @@ fleet:
   return ParseScenario(text, "small_area.yaml", ".");
 }
 
-}  // namespace fireswarm::run::testing
+}  // namespace fireswarm::run::test

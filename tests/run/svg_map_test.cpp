@@ -55,7 +55,7 @@ double Number(const XmlElement& element, const std::string& key) {
   return value.empty() ? std::numeric_limits<double>::quiet_NaN() : std::stod(value);
 }
 
-XmlDocument Parsed(const std::string& svg) {
+XmlDocument ParsedSvg(const std::string& svg) {
   XmlDocument doc = ParseXml(svg);
   EXPECT_EQ(doc.error, "") << svg.substr(0, 2000);
   return doc;
@@ -122,7 +122,7 @@ Report TestReport(const Scenario& scenario) {
 TEST(SvgMap, IsAWellFormedSvgDocument) {
   const Scenario scenario = TestScenario();
   const std::string svg = SvgMap(TestReport(scenario), scenario);
-  const XmlDocument doc = Parsed(svg);
+  const XmlDocument doc = ParsedSvg(svg);
   ASSERT_FALSE(doc.elements.empty());
   EXPECT_EQ(doc.elements[0].name, "svg");
   EXPECT_EQ(doc.elements[0].Attribute("xmlns"), "http://www.w3.org/2000/svg");
@@ -136,7 +136,7 @@ TEST(SvgMap, IsAWellFormedSvgDocument) {
 
 TEST(SvgMap, DrawsOnePathPerDroneInItsOwnColourNamedInTheLegend) {
   const Scenario scenario = TestScenario();
-  const XmlDocument doc = Parsed(SvgMap(TestReport(scenario), scenario));
+  const XmlDocument doc = ParsedSvg(SvgMap(TestReport(scenario), scenario));
   const auto paths = doc.Find("path", "tracks");
   ASSERT_EQ(paths.size(), 3U);
   std::set<std::string> colours;
@@ -162,7 +162,7 @@ TEST(SvgMap, DrawsOnePathPerDroneInItsOwnColourNamedInTheLegend) {
 
 TEST(SvgMap, NorthIsUpEastIsRightAtTheScaleBarsScale) {
   const Scenario scenario = TestScenario();
-  const XmlDocument doc = Parsed(SvgMap(TestReport(scenario), scenario));
+  const XmlDocument doc = ParsedSvg(SvgMap(TestReport(scenario), scenario));
   const double px_per_m = PxPerMetre(doc);
   EXPECT_GT(px_per_m, 1.0);
   // The fused fire lies 10 m north of the true one: straight up on the picture.
@@ -188,7 +188,7 @@ TEST(SvgMap, FusedEllipseHasTheCovariancesTwoSigmaAxesAndOrientation) {
   correlated.fused = At(scenario, 100.0, 100.0);
   correlated.covariance_ne_m2 = std::array<double, 3>{10.0, 6.0, 10.0};
   report.fires.push_back(correlated);
-  const XmlDocument doc = Parsed(SvgMap(report, scenario));
+  const XmlDocument doc = ParsedSvg(SvgMap(report, scenario));
   const double px_per_m = PxPerMetre(doc);
   const auto ellipses = doc.Find("ellipse", "fused-ellipses");
   ASSERT_EQ(ellipses.size(), 2U);
@@ -204,7 +204,7 @@ TEST(SvgMap, FusedEllipseHasTheCovariancesTwoSigmaAxesAndOrientation) {
 
 TEST(SvgMap, AreaHolesStayOpenAndNoFlyZonesAreHatched) {
   const Scenario scenario = TestScenario();
-  const XmlDocument doc = Parsed(SvgMap(TestReport(scenario), scenario));
+  const XmlDocument doc = ParsedSvg(SvgMap(TestReport(scenario), scenario));
   const XmlElement* area = doc.ById("area");
   ASSERT_NE(area, nullptr);
   EXPECT_EQ(area->Attribute("fill-rule"), "evenodd");
@@ -220,7 +220,7 @@ TEST(SvgMap, AreaHolesStayOpenAndNoFlyZonesAreHatched) {
 
 TEST(SvgMap, MarksCollisionsFalseTracksAndMissedFires) {
   const Scenario scenario = TestScenario();
-  const XmlDocument doc = Parsed(SvgMap(TestReport(scenario), scenario));
+  const XmlDocument doc = ParsedSvg(SvgMap(TestReport(scenario), scenario));
   EXPECT_EQ(doc.Find("g", "collisions").size(), 1U);
   EXPECT_EQ(doc.Find("path", "false-tracks").size(), 1U);
   EXPECT_EQ(doc.Find("path", "fused-fires").size(), 1U);  // one cross: one confirmed fire
@@ -234,7 +234,7 @@ TEST(SvgMap, MarksCollisionsFalseTracksAndMissedFires) {
 
 TEST(SvgMap, TitleNamesTheScenarioWithFiresConfirmedAndCoverage) {
   const Scenario scenario = TestScenario();
-  const XmlDocument doc = Parsed(SvgMap(TestReport(scenario), scenario));
+  const XmlDocument doc = ParsedSvg(SvgMap(TestReport(scenario), scenario));
   ASSERT_NE(doc.ById("title"), nullptr);
   EXPECT_EQ(doc.ById("title")->text, "fireswarm run: svg test");
   ASSERT_NE(doc.ById("summary"), nullptr);
@@ -249,7 +249,7 @@ TEST(SvgMap, EscapesTheScenarioName) {
   report.scenario = "a<b & \"c\"";
   const std::string svg = SvgMap(report, scenario);
   EXPECT_THAT(svg, Not(HasSubstr("a<b")));
-  const XmlDocument doc = Parsed(svg);
+  const XmlDocument doc = ParsedSvg(svg);
   ASSERT_NE(doc.ById("title"), nullptr);
   EXPECT_EQ(doc.ById("title")->text, "fireswarm run: a<b & \"c\"");
   EXPECT_EQ(doc.Find("title").at(0)->text, "fireswarm run: a<b & \"c\"");
@@ -271,7 +271,7 @@ TEST(SvgMap, IsDeterministicAndSmallForLongTracks) {
   }
   const std::string svg = SvgMap(report, scenario);
   EXPECT_EQ(svg, SvgMap(report, scenario));
-  const XmlDocument doc = Parsed(svg);
+  const XmlDocument doc = ParsedSvg(svg);
   const XmlElement* path = doc.ById("track-4");
   ASSERT_NE(path, nullptr);
   const std::string d = path->Attribute("d");
@@ -291,8 +291,8 @@ TEST(SvgMap, LeavesOutPositionsItCannotPlace) {
   FireOutcome nowhere;
   nowhere.truth = {0.0, 0.0};  // an unset position, thousands of km away
   broken.fires.push_back(nowhere);
-  const XmlDocument doc = Parsed(SvgMap(broken, scenario));
-  EXPECT_DOUBLE_EQ(PxPerMetre(doc), PxPerMetre(Parsed(SvgMap(report, scenario))));
+  const XmlDocument doc = ParsedSvg(SvgMap(broken, scenario));
+  EXPECT_DOUBLE_EQ(PxPerMetre(doc), PxPerMetre(ParsedSvg(SvgMap(report, scenario))));
   EXPECT_EQ(doc.Find("circle", "fires").size(), 2U);
 }
 
@@ -302,7 +302,7 @@ TEST(SvgMap, ManyDronesGetDistinctColoursAndLegendColumns) {
   for (int id = kMinReceiverId; id <= kMaxReceiverId; ++id) {
     report.vehicles[id].track = {At(scenario, id, 0.0), At(scenario, id, 50.0)};
   }
-  const XmlDocument doc = Parsed(SvgMap(report, scenario));
+  const XmlDocument doc = ParsedSvg(SvgMap(report, scenario));
   std::set<std::string> colours;
   for (const XmlElement* path : doc.Find("path", "tracks"))
     colours.insert(path->Attribute("stroke"));
@@ -334,13 +334,13 @@ TEST(SvgMap, DrawsNoEllipseForWhatIsNoCovariance) {
   const Scenario scenario = TestScenario();
   Report report = TestReport(scenario);
   report.fires[0].covariance_ne_m2 = std::array<double, 3>{1.0, 2.0, 1.0};  // eigenvalue -1
-  EXPECT_TRUE(Parsed(SvgMap(report, scenario)).Find("ellipse", "fused-ellipses").empty());
+  EXPECT_TRUE(ParsedSvg(SvgMap(report, scenario)).Find("ellipse", "fused-ellipses").empty());
   report.fires[0].covariance_ne_m2 =
       std::array<double, 3>{std::numeric_limits<double>::quiet_NaN(), 0.0, 1.0};
-  EXPECT_TRUE(Parsed(SvgMap(report, scenario)).Find("ellipse", "fused-ellipses").empty());
+  EXPECT_TRUE(ParsedSvg(SvgMap(report, scenario)).Find("ellipse", "fused-ellipses").empty());
   // A round one is a circle: no rotation.
   report.fires[0].covariance_ne_m2 = std::array<double, 3>{9.0, 0.0, 9.0};
-  const XmlDocument doc = Parsed(SvgMap(report, scenario));
+  const XmlDocument doc = ParsedSvg(SvgMap(report, scenario));
   const auto ellipses = doc.Find("ellipse", "fused-ellipses");
   ASSERT_EQ(ellipses.size(), 1U);
   EXPECT_EQ(ellipses[0]->Attribute("rx"), ellipses[0]->Attribute("ry"));
@@ -357,7 +357,7 @@ TEST(SvgMap, TrackThatTurnsBackKeepsItsFarEnd) {
   for (int m = 0; m <= 200; m += 10) track.push_back(At(scenario, -100.0 + m, -120.0));
   for (int m = 200; m >= 0; m -= 10) track.push_back(At(scenario, -100.0 + m, -120.0));
   for (int i = 0; i < 10; ++i) track.push_back(At(scenario, -100.0 + 0.01 * i, -120.0));
-  const XmlDocument doc = Parsed(SvgMap(report, scenario));
+  const XmlDocument doc = ParsedSvg(SvgMap(report, scenario));
   const XmlElement* path = doc.ById("track-1");
   ASSERT_NE(path, nullptr);
   std::string d = path->Attribute("d");
@@ -375,7 +375,7 @@ TEST(SvgMap, TrackThatTurnsBackKeepsItsFarEnd) {
 
 TEST(SvgMap, ScaleBarIsARoundLength) {
   const Scenario scenario = TestScenario();
-  const XmlDocument doc = Parsed(SvgMap(TestReport(scenario), scenario));
+  const XmlDocument doc = ParsedSvg(SvgMap(TestReport(scenario), scenario));
   ASSERT_NE(doc.ById("scale-bar-label"), nullptr);
   const std::string label = doc.ById("scale-bar-label")->text;
   EXPECT_THAT(label, testing::MatchesRegex("[125]0* k?m"));

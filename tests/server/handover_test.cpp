@@ -9,11 +9,12 @@
 #include <vector>
 
 #include "fireswarm/planner/transit.hpp"
+#include "server/server_fixture.hpp"
 
 namespace fireswarm::server {
 namespace {
 
-const common::LocalFrame kFrame{common::LatLon{46.0, -74.5}};
+using testing::kFrame;
 
 radio::Waypoint At(double east_m, double north_m, bool lane_start, double altitude_m = 60.0) {
   const common::LatLon p = kFrame.ToGeodetic({east_m, north_m});

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "fireswarm/common/time.hpp"
+#include "server/server_fixture.hpp"
 
 namespace fireswarm::server {
 namespace {
@@ -16,7 +17,7 @@ namespace {
 using common::Nanos;
 using ::testing::HasSubstr;
 
-const common::LocalFrame kFrame{common::LatLon{46.0, -74.5}};
+using testing::kFrame;
 
 // A vehicle at `east_m, north_m` of the frame's origin in `mode`.
 radio::Telemetry At(std::uint8_t id, double east_m, double north_m,

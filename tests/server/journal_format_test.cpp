@@ -15,6 +15,8 @@
 namespace fireswarm::server {
 namespace {
 
+using Kind = OperatorCommand::Kind;
+
 using ::testing::HasSubstr;
 
 DroneMission MissionOf(std::uint8_t vehicle, std::uint16_t mission_id) {
@@ -107,7 +109,6 @@ TEST(JournalFormat, KeepsTheRecordNamesAndFieldsOfTheFormatBeforeTypes) {
 // The per-drone and fleet orders have records of their own, with the command's ID;
 // a command record written before IDs existed reads as ID 0 (unknown).
 TEST(JournalFormat, EveryCommandKindComesBackWithItsId) {
-  using Kind = OperatorCommand::Kind;
   const std::pair<Kind, const char*> kinds[] = {{Kind::kStart, "start"},
                                                 {Kind::kAbort, "abort"},
                                                 {Kind::kReturnAll, "return_all"},

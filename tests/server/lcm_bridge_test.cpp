@@ -27,8 +27,8 @@ namespace {
 using common::Nanos;
 using testing::Air;
 
-const common::LocalFrame kFrame{common::LatLon{46.0, -74.5}};
-constexpr Nanos kSecond = std::chrono::seconds(1);
+using testing::kFrame;
+using testing::kSecond;
 
 std::filesystem::path TempDir(const std::string& name) {
   const std::filesystem::path dir = std::filesystem::path(::testing::TempDir()) /

@@ -14,13 +14,14 @@
 #include <vector>
 
 #include "fireswarm/server/lcm_bridge.hpp"
+#include "server/server_fixture.hpp"
 
 namespace fireswarm::server {
 namespace {
 
 using Json = nlohmann::ordered_json;
 
-const common::LocalFrame kFrame{common::LatLon{46.0, -74.5}};
+using testing::kFrame;
 
 planner::Polygon Rect(double x0, double y0, double x1, double y1) {
   planner::Polygon p{{{x0, y0}, {x0, y1}, {x1, y1}, {x1, y0}, {x0, y0}}};
@@ -42,31 +43,16 @@ ServerConfig PlanConfig() {
   return config;
 }
 
-std::vector<DroneMission> Missions(const std::vector<std::uint8_t>& ids) {
-  std::vector<DroneMission> missions;
-  for (const std::uint8_t id : ids) {
-    DroneMission m;
-    m.vehicle = id;
-    m.mission_id = 1;
-    for (int i = 0; i < 4; ++i) {
-      radio::Waypoint w;
-      const common::LatLon p = kFrame.ToGeodetic({100.0 * i, 40.0 * id});
-      w.lat_deg = p.lat_deg;
-      w.lon_deg = p.lon_deg;
-      w.altitude_m = 60.0;
-      w.speed_mps = 10.0;
-      m.waypoints.push_back(w);
-    }
-    missions.push_back(m);
-  }
-  return missions;
+// Four waypoints 100 m apart on a line per drone, drones 40 m apart.
+std::vector<DroneMission> LineMissions(const std::vector<std::uint8_t>& ids) {
+  return testing::Missions(ids, 4, 40.0);
 }
 
 struct PlannedServer {
   explicit PlannedServer(const ServerConfig& config = PlanConfig()) : server(config, kFrame) {
     server.AddVehicle(1);
     server.AddVehicle(2);
-    server.LoadMission(Missions({1, 2}));
+    server.LoadMission(LineMissions({1, 2}));
   }
   Server server;
 };
@@ -209,7 +195,7 @@ TEST(LcmBridgePlan, PublishedOnMemqWhenAMissionIsLoadedAndEveryFiveSeconds) {
   publish_until(0.0, 3.0);
   EXPECT_TRUE(inbox.utimes.empty()) << "no plan before a mission";
   EXPECT_EQ(bridge.NextPublishS(), 3.0) << "no plan due yet either";
-  server.LoadMission(Missions({1, 2}));
+  server.LoadMission(LineMissions({1, 2}));
   publish_until(3.0, 14.0);
   EXPECT_EQ(inbox.utimes, (std::vector<std::int64_t>{3'000'000, 8'000'000, 13'000'000}));
   EXPECT_EQ(inbox.last.mission_id, 1);

@@ -12,6 +12,7 @@
 #include "fireswarm/server/lcm_bridge.hpp"
 #include "fireswarm/server/server.hpp"
 #include "server/fake_fleet.hpp"
+#include "server/server_fixture.hpp"
 
 namespace fireswarm::server {
 namespace {
@@ -19,8 +20,8 @@ namespace {
 using common::Nanos;
 using testing::Air;
 
-const common::LocalFrame kFrame{common::LatLon{46.0, -74.5}};
-constexpr Nanos kSecond = std::chrono::seconds(1);
+using testing::kFrame;
+using testing::kSecond;
 
 planner::Polygon Rect(double x0, double y0, double x1, double y1) {
   planner::Polygon p{{{x0, y0}, {x0, y1}, {x1, y1}, {x1, y0}, {x0, y0}}};

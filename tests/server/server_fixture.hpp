@@ -54,15 +54,16 @@ inline radio::FireReport ReportAt(double east_m, double north_m, double observer
   return report;
 }
 
-inline std::vector<DroneMission> Missions(const std::vector<std::uint8_t>& ids) {
+inline std::vector<DroneMission> Missions(const std::vector<std::uint8_t>& ids, int waypoints = 3,
+                                          double spacing_m = 50.0) {
   std::vector<DroneMission> missions;
   for (const std::uint8_t id : ids) {
     DroneMission m;
     m.vehicle = id;
     m.mission_id = 1;
-    for (int i = 0; i < 3; ++i) {
+    for (int i = 0; i < waypoints; ++i) {
       radio::Waypoint w;
-      const common::LatLon p = kFrame.ToGeodetic({100.0 * i, 50.0 * id});
+      const common::LatLon p = kFrame.ToGeodetic({100.0 * i, spacing_m * id});
       w.lat_deg = p.lat_deg;
       w.lon_deg = p.lon_deg;
       w.altitude_m = 60.0;

@@ -18,6 +18,8 @@
 namespace fireswarm::server {
 namespace {
 
+using Kind = OperatorCommand::Kind;
+
 using common::Nanos;
 using testing::Air;
 using testing::FakeVehicle;
@@ -171,7 +173,6 @@ TEST(Server, RefusesAnOperatorInvestigationIntoANoFlyZoneWithTheReason) {
     const OperatorCommand command{kind, vehicle, kFrame.ToGeodetic({east_m, north_m}), 0.0, ""};
     return fleet.server.Handle(command, fleet.air.channel().now(), why);
   };
-  using Kind = OperatorCommand::Kind;
   std::string why;
   EXPECT_FALSE(order(Kind::kInvestigatePoint, 0, 150, 0, &why));
   EXPECT_EQ(why, "the point is inside a no-fly zone");

@@ -21,6 +21,9 @@ inline constexpr std::array<std::uint8_t, 3> kPreamble{0x70, 0x96, 0xAC};
 inline constexpr std::uint8_t kServerId = 0;
 /// Frames addressed to 255 are for every vehicle.
 inline constexpr std::uint8_t kBroadcastId = 255;
+/// Lowest and highest receiver ID a vehicle may have.
+inline constexpr std::uint8_t kFirstVehicleId = 1;
+inline constexpr std::uint8_t kLastVehicleId = 254;
 /// Preamble, receiver ID, message ID, length.
 inline constexpr std::size_t kHeaderSize = 6;
 inline constexpr std::size_t kMaxDataSize = 255;

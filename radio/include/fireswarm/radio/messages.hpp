@@ -162,8 +162,11 @@ struct Waypoint {
   double lon_deg = 0.0;     ///< wire: i32 1e-7 deg
   double altitude_m = 0.0;  ///< above ground; wire: u16 dm
   double speed_mps = 0.0;   ///< wire: u8 0.1 m/s
-  std::uint8_t flags = 0;   ///< bit 0: start of a search lane
+  std::uint8_t flags = 0;   ///< kLaneStart or 0
   friend bool operator==(const Waypoint&, const Waypoint&) = default;
+
+  /// `flags` bit 0: this waypoint starts a search lane.
+  static constexpr std::uint8_t kLaneStart = 1U << 0;
 };
 
 inline constexpr std::size_t kMaxWaypointsPerChunk = 20;

@@ -17,8 +17,8 @@
 namespace fireswarm::server {
 
 /// Lowest and highest receiver ID a vehicle may have (0 is the server, 255 broadcast).
-inline constexpr int kFirstVehicleId = 1;
-inline constexpr int kLastVehicleId = 254;
+inline constexpr int kFirstVehicleId = radio::kFirstVehicleId;
+inline constexpr int kLastVehicleId = radio::kLastVehicleId;
 
 /// The server's view of the radio link to one vehicle. The values are those of
 /// lcmtypes/vehicle_state_t.lcm's LINK_* constants, so the LCM bridge maps one to one.

@@ -45,6 +45,12 @@ struct IgnitionRecord {
 struct GroundBox {
   Vec2 min_m = Vec2::Zero();
   Vec2 max_m = Vec2::Zero();
+
+  /// True if the two boxes share a point (touching edges count).
+  bool Overlaps(const GroundBox& other) const {
+    return min_m.x() <= other.max_m.x() && other.min_m.x() <= max_m.x() &&
+           min_m.y() <= other.max_m.y() && other.min_m.y() <= max_m.y();
+  }
 };
 
 class FireGrid {
