@@ -12,6 +12,8 @@
 // The command center (--http, web_flags.hpp): the page and its API served while
 // the run goes; its commands reach the server at the step's simulated time.
 // --pace K holds simulated time to K times the wall clock, so a person can watch.
+// When the run ends, one JSON line {"event": "web_cpu", ...} on stdout gives the
+// web adapter's CPU against the process's (WebFeed::CpuFigures).
 #include <unistd.h>
 
 #include <cerrno>
@@ -257,6 +259,8 @@ run::RunResult Fly(const run::Scenario& scenario, RunLcmOutput* lcm, server::Web
     DrawProgress(last);
     std::fputc('\n', stderr);
   }
+  // The web adapter's share of the run's CPU (bench/web/command_center_bench.mjs).
+  if (feed) std::cout << feed->CpuFigures().dump() << std::endl;
   return result;
 }
 

@@ -1,5 +1,7 @@
 #include "web_feed.hpp"
 
+#include <chrono>
+#include <ctime>
 #include <iostream>
 #include <nlohmann/json.hpp>
 
@@ -9,11 +11,14 @@ namespace fireswarm::app {
 namespace {
 
 constexpr double kUpdatePeriodS = 0.2;  // 5 Hz (docs/command_center.md)
+constexpr int kUpdatePeriodMs = 200;    // ... and at most 5 Hz of the wall clock
 constexpr double kRadioWindowS = 2.0;   // radio_stats_t's window, as LcmRates' 0.5 Hz
 constexpr double kPlanPeriodS = 5.0;    // plan_t's period, as LcmRates' 0.2 Hz
 // The coverage raster is up to 2 million cells; the page fetches it every few
-// seconds, so it is rebuilt once a second, not at every update.
+// seconds, so it is rebuilt once a second (of the run's clock and of the wall
+// clock), not at every update.
 constexpr double kCoveragePeriodS = 1.0;
+constexpr int kCoveragePeriodMs = 1000;  // ... and of the wall clock
 constexpr int kAccepted = 202;
 constexpr int kBadRequest = 400;
 constexpr int kConflict = 409;
@@ -24,6 +29,20 @@ server::CommandCenterConfig ModelConfig(const std::string& source) {
   return config;
 }
 
+// CPU time on `clock` (CLOCK_THREAD_CPUTIME_ID, CLOCK_PROCESS_CPUTIME_ID), s.
+double CpuSeconds(clockid_t clock) {
+  timespec cpu{};
+  clock_gettime(clock, &cpu);
+  return static_cast<double>(cpu.tv_sec) + static_cast<double>(cpu.tv_nsec) * 1e-9;
+}
+
+// The wall clock, ms since the Unix epoch: the documents' `built_unix_ms`.
+std::int64_t UnixMillisNow() {
+  return std::chrono::duration_cast<std::chrono::milliseconds>(
+             std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+
 std::string ErrorBody(const std::string& why) {
   return nlohmann::json{{"error", why}}.dump();
 }
@@ -31,15 +50,35 @@ std::string ErrorBody(const std::string& why) {
 }  // namespace
 
 WebFeed::WebFeed(server::WebServer& web, const std::string& source)
-    : web_(web), model_(ModelConfig(source)) {}
+    : web_(web), model_(ModelConfig(source)), plan_document_(model_.Plan().dump()) {}
 
 void WebFeed::Step(server::Server& server, common::Nanos now, std::int64_t utime,
                    std::int64_t utime_at_zero) {
+  const double cpu_start_s = CpuSeconds(CLOCK_THREAD_CPUTIME_ID);
   TakeCommands(server, now);
   const double now_s = common::ToSeconds(now);
-  if (now_s + 1e-9 < next_update_s_) return;
-  next_update_s_ = now_s + kUpdatePeriodS;
-  Update(server, now_s, utime, utime_at_zero);
+  // 5 Hz of the run's clock, and no more often than 5 times a second of the wall
+  // clock: a run paced at K would otherwise update and serialise K times as often
+  // as anybody can watch (the delta taken later carries every change since the last).
+  const std::chrono::steady_clock::time_point wall = std::chrono::steady_clock::now();
+  if (now_s + 1e-9 >= next_update_s_ && wall >= next_update_wall_) {
+    next_update_s_ = now_s + kUpdatePeriodS;
+    next_update_wall_ = wall + std::chrono::milliseconds(kUpdatePeriodMs);
+    Update(server, now_s, utime, utime_at_zero);
+  }
+  cpu_s_ += CpuSeconds(CLOCK_THREAD_CPUTIME_ID) - cpu_start_s;
+}
+
+nlohmann::json WebFeed::CpuFigures() const {
+  const double io_cpu_s = web_.io_cpu_seconds();
+  const double web_cpu_s = cpu_s_ + io_cpu_s;
+  const double process_cpu_s = CpuSeconds(CLOCK_PROCESS_CPUTIME_ID);
+  return {{"event", "web_cpu"},
+          {"feed_cpu_s", cpu_s_},
+          {"io_cpu_s", io_cpu_s},
+          {"web_cpu_s", web_cpu_s},
+          {"process_cpu_s", process_cpu_s},
+          {"share", process_cpu_s > 0.0 ? web_cpu_s / process_cpu_s : 0.0}};
 }
 
 void WebFeed::TakeCommands(server::Server& server, common::Nanos now) {
@@ -79,6 +118,7 @@ void WebFeed::Update(const server::Server& server, double now_s, std::int64_t ut
   if (server.mission() != nullptr && now_s + 1e-9 >= next_plan_s_) {
     next_plan_s_ = now_s + kPlanPeriodS;
     model_.OnPlan(server::ToPlan(server, utime));
+    plan_document_ = model_.Plan().dump();
   }
   if (server.commands_version() != commands_version_) {
     for (const server::CommandRecord& record : server.commands()) {
@@ -96,12 +136,20 @@ void WebFeed::Update(const server::Server& server, double now_s, std::int64_t ut
     next_radio_s_ = now_s + kRadioWindowS;
     model_.OnRadioStats(server::ToRadioStats(server, now_s, utime, kRadioWindowS, radio_counters_));
   }
-  if (now_s + 1e-9 >= next_coverage_s_) {
+  const std::chrono::steady_clock::time_point wall = std::chrono::steady_clock::now();
+  if (now_s + 1e-9 >= next_coverage_s_ && wall >= next_coverage_wall_) {
     next_coverage_s_ = now_s + kCoveragePeriodS;
+    next_coverage_wall_ = wall + std::chrono::milliseconds(kCoveragePeriodMs);
     coverage_document_ = model_.Coverage().dump();
   }
-  web_.SetDocuments(model_.State().dump(), model_.Plan().dump(), coverage_document_);
-  if (std::optional<nlohmann::json> delta = model_.TakeDelta()) web_.Broadcast(delta->dump());
+  const std::int64_t built_unix_ms = UnixMillisNow();
+  nlohmann::json state = model_.State();
+  state["built_unix_ms"] = built_unix_ms;
+  web_.SetDocuments(state.dump(), plan_document_, coverage_document_);
+  if (std::optional<nlohmann::json> delta = model_.TakeDelta()) {
+    (*delta)["built_unix_ms"] = built_unix_ms;
+    web_.Broadcast(delta->dump());
+  }
 }
 
 }  // namespace fireswarm::app

@@ -1,15 +1,20 @@
 // The glue between the server core and the command center's web server: at 5 Hz
-// of the caller's clock (simulated for `run`, the mission clock for `serve`) the
-// server is converted into its LCM messages (lcm_bridge.hpp's pure conversions),
-// fed to the page's model (server::CommandCenter), and the model served
-// (SetDocuments) and its delta broadcast (the plan every 5 s as LCM's plan_t,
-// each command's status when it changed, the coverage raster every second); at every step the
-// page's commands are parsed (ParseWebCommand) and handed to Server::Handle at that time, the same
+// of the caller's clock (simulated for `run`, the mission clock for `serve`), and
+// no more often than 5 times a second of the wall clock (a run paced at K > 1 is
+// fed every K/5 simulated s), the server is converted into its LCM messages
+// (lcm_bridge.hpp's pure conversions), fed to the page's model
+// (server::CommandCenter), and the model served (SetDocuments) and its delta
+// broadcast (the plan every 5 s as LCM's plan_t, each command's status when it
+// changed, the coverage raster every second); at every step the page's commands
+// are parsed (ParseWebCommand) and handed to Server::Handle at that time, the same
 // entry point as LCM's operator commands, and answered: 202 queued, 400 or 409
-// with why.
+// with why. Each delta and state document carries `built_unix_ms`, the wall clock
+// when it was built (the page measures its state-to-screen latency with it).
 #pragma once
 
+#include <chrono>
 #include <cstdint>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "fireswarm/common/time.hpp"
@@ -31,6 +36,16 @@ class WebFeed {
   void Step(server::Server& server, common::Nanos now, std::int64_t utime,
             std::int64_t utime_at_zero);
 
+  /// CPU time Step has taken on the caller's thread since the feed was made, s
+  /// (the model's updates, the documents' and deltas' serialisation, the commands).
+  double cpu_seconds() const { return cpu_s_; }
+
+  /// The web adapter's CPU against the process's, as one JSON event line's object:
+  /// {"event": "web_cpu", "feed_cpu_s": this feed's (cpu_seconds()), "io_cpu_s": the
+  /// web server's io thread's, "web_cpu_s": their sum, "process_cpu_s": the whole
+  /// process's (CLOCK_PROCESS_CPUTIME_ID), "share": web_cpu_s / process_cpu_s}.
+  nlohmann::json CpuFigures() const;
+
  private:
   void TakeCommands(server::Server& server, common::Nanos now);
   void Update(const server::Server& server, double now_s, std::int64_t utime,
@@ -43,7 +58,11 @@ class WebFeed {
   double next_radio_s_ = 0.0;
   double next_plan_s_ = 0.0;
   double next_coverage_s_ = 0.0;
+  std::chrono::steady_clock::time_point next_update_wall_{};
+  std::chrono::steady_clock::time_point next_coverage_wall_{};  // the coverage document
   std::string coverage_document_ = "{}";
+  std::string plan_document_;  // model_.Plan() serialised, redone when the plan is fed
+  double cpu_s_ = 0.0;
   std::uint64_t commands_version_ = 0;  // the server's commands_version() last fed
   std::uint64_t refused_noted_ = 0;     // web_.refused() already counted in the model
 };

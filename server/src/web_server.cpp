@@ -3,9 +3,13 @@
 // thread go to the hub they share (web_hub.cpp).
 #include "fireswarm/server/web_server.hpp"
 
+#include <pthread.h>
+
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/ssl.hpp>
+#include <ctime>
 #include <iostream>
+#include <optional>
 #include <stdexcept>
 #include <thread>
 
@@ -68,6 +72,7 @@ struct WebServer::Impl {
   asio::io_context io{1};
   tcp::acceptor acceptor{io};
   std::thread thread;
+  std::optional<clockid_t> thread_clock;  // the io thread's CPU clock (pthread_getcpuclockid)
   std::string url;
   std::uint16_t port = 0;  // bound, read without touching the acceptor (io thread's)
 
@@ -112,6 +117,10 @@ WebServer::WebServer(WebServerConfig config) : impl_(std::make_unique<Impl>()) {
       std::string(tls ? "https" : "http") + "://" + shown + ":" + std::to_string(port()) + "/";
   impl_->Accept();
   impl_->thread = std::thread([this] { impl_->io.run(); });
+  clockid_t clock{};
+  if (pthread_getcpuclockid(impl_->thread.native_handle(), &clock) == 0) {
+    impl_->thread_clock = clock;
+  }
 }
 
 WebServer::~WebServer() {
@@ -167,6 +176,12 @@ std::uint64_t WebServer::refused() const {
 
 std::size_t WebServer::clients() const {
   return impl_->hub->clients();
+}
+
+double WebServer::io_cpu_seconds() const {
+  timespec cpu{};
+  if (!impl_->thread_clock || clock_gettime(*impl_->thread_clock, &cpu) != 0) return 0.0;
+  return static_cast<double>(cpu.tv_sec) + static_cast<double>(cpu.tv_nsec) * 1e-9;
 }
 
 }  // namespace fireswarm::server

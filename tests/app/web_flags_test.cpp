@@ -8,8 +8,10 @@
 #include <boost/beast/http.hpp>
 #include <boost/beast/websocket.hpp>
 #include <chrono>
+#include <cstdint>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 
 #include "app/fireswarm_process.hpp"
@@ -103,8 +105,17 @@ TEST_F(WebFlagsTest, RunServesThePageWhileItGoesAtThePaceAsked) {
   buffer.consume(buffer.size());
   ws.read(buffer);
   const nlohmann::json delta = nlohmann::json::parse(beast::buffers_to_string(buffer.data()));
+  const auto read_ms = std::chrono::duration_cast<std::chrono::milliseconds>(
+                           std::chrono::system_clock::now().time_since_epoch())
+                           .count();
   EXPECT_EQ(delta.at("type"), "delta");
-  EXPECT_EQ(nlohmann::json::parse(Get(*port, "/api/state").body()).at("source"), "simulated");
+  // Stamped with the wall clock when the server built it: just before it was read.
+  EXPECT_LE(delta.at("built_unix_ms").get<std::int64_t>(), read_ms);
+  EXPECT_GT(delta.at("built_unix_ms").get<std::int64_t>(), read_ms - 5000);
+  const nlohmann::json state = nlohmann::json::parse(Get(*port, "/api/state").body());
+  EXPECT_EQ(state.at("source"), "simulated");
+  EXPECT_GE(state.at("built_unix_ms").get<std::int64_t>(),
+            delta.at("built_unix_ms").get<std::int64_t>());
   // Commands reach the server core, which answers through the feed.
   const auto bogus =
       Fetch(*port, http::verb::post, "/api/command", R"({"kind":"bogus"})", "operator-token");
@@ -117,6 +128,19 @@ TEST_F(WebFlagsTest, RunServesThePageWhileItGoesAtThePaceAsked) {
             http::status::unauthorized);
   const RunResult result = run.Finish(deadline);
   EXPECT_EQ(result.exit_code, 0);
+  // Its last word: the web adapter's CPU, a part of the process's.
+  std::optional<nlohmann::json> cpu;
+  for (const std::string& line : result.lines) {
+    if (line.find(R"("event":"web_cpu")") != std::string::npos) cpu = nlohmann::json::parse(line);
+  }
+  ASSERT_TRUE(cpu) << "no web_cpu line";
+  EXPECT_GT(cpu->at("feed_cpu_s").get<double>(), 0.0);
+  EXPECT_GT(cpu->at("io_cpu_s").get<double>(), 0.0) << "the io thread served requests";
+  EXPECT_DOUBLE_EQ(cpu->at("web_cpu_s").get<double>(),
+                   cpu->at("feed_cpu_s").get<double>() + cpu->at("io_cpu_s").get<double>());
+  EXPECT_LT(cpu->at("web_cpu_s").get<double>(), cpu->at("process_cpu_s").get<double>());
+  EXPECT_DOUBLE_EQ(cpu->at("share").get<double>(),
+                   cpu->at("web_cpu_s").get<double>() / cpu->at("process_cpu_s").get<double>());
   const nlohmann::json report = nlohmann::json::parse(std::ifstream(PathOf("r.json")));
   // Paced: simulated time never ran ahead of K times the wall clock.
   EXPECT_GE(report.at("wall_seconds").get<double>(),

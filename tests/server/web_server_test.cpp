@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <ctime>
 #include <future>
 
 #include "web_test_support.hpp"
@@ -91,6 +92,21 @@ TEST_F(WebServerTest, ServesTheDocumentsItWasGiven) {
   EXPECT_EQ(Get(server.port(), "/api/plan").body(), R"({"type":"FeatureCollection"})");
   EXPECT_EQ(Get(server.port(), "/api/coverage").body(), R"({"rows":3})");
   EXPECT_EQ(Get(server.port(), "/api/other").result(), http::status::not_found);
+}
+
+TEST_F(WebServerTest, CountsTheCpuTimeOfItsIoThreadAlone) {
+  WebServer server(Config());
+  server.SetDocuments(std::string(1 << 20, ' ') + "{}", "{}", "{}");
+  const double before_s = server.io_cpu_seconds();
+  for (int i = 0; i < 20; ++i)
+    ASSERT_EQ(Get(server.port(), "/api/state").result(), http::status::ok);
+  const double after_s = server.io_cpu_seconds();
+  EXPECT_GT(after_s, before_s) << "serving 20 MiB took no CPU on the io thread";
+  // This thread's work (the requests, the reads) is not the io thread's.
+  timespec process{};
+  ASSERT_EQ(clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &process), 0);
+  EXPECT_LT(after_s,
+            static_cast<double>(process.tv_sec) + static_cast<double>(process.tv_nsec) * 1e-9);
 }
 
 TEST_F(WebServerTest, QueuesACommandWithTheRightTokenAndRepliesWithTheCallersAnswer) {

@@ -60,4 +60,4 @@ store.subscribe((s) => {
   }
 });
 store.connect();
-window.fireswarm = { store, map }; // for the browser tests and the console
+window.fireswarm = { store, map, stats: store.stats }; // for the browser tests, the benchmark and the console

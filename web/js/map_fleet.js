@@ -63,14 +63,21 @@ export class FleetLayer {
     }
   }
 
+  // Writes the marker element's attributes, only those that changed (each write
+  // costs a style recalculation at 250 drones).
   decorate_(m, vehicle) {
     const element = m.marker.getElement();
     if (!element) return;
-    element.dataset.vehicle = String(vehicle.id);
-    element.dataset.lat = String(vehicle.position[0]);
-    element.dataset.lon = String(vehicle.position[1]);
-    element.dataset.link = vehicle.link || '';
-    element.classList.toggle('lost', vehicle.link === 'lost');
-    element.classList.toggle('selected', vehicle.id === this.selected_);
+    const set = (key, value) => {
+      if (element.dataset[key] !== value) element.dataset[key] = value;
+    };
+    set('vehicle', String(vehicle.id));
+    set('lat', String(vehicle.position[0]));
+    set('lon', String(vehicle.position[1]));
+    set('link', vehicle.link || '');
+    const lost = vehicle.link === 'lost';
+    if (element.classList.contains('lost') !== lost) element.classList.toggle('lost', lost);
+    const selected = vehicle.id === this.selected_;
+    if (element.classList.contains('selected') !== selected) element.classList.toggle('selected', selected);
   }
 }

@@ -7,6 +7,8 @@
 export const TRAIL_POINTS = 300;
 /** Alerts kept (newest kept). */
 export const ALERTS_KEPT = 500;
+/** Entries kept in each of `stats`' arrays (the newest). */
+export const STATS_KEPT = 10000;
 /** Reconnection delay after the stream closes, ms (doubles up to the max). */
 const RECONNECT_MS = 500;
 const RECONNECT_MAX_MS = 5000;
@@ -38,6 +40,17 @@ export class Store {
     this.ws_ = null;
     this.retryMs_ = RECONNECT_MS;
     this.hasState = false;
+    /**
+     * Figures of the page (bench/web/command_center_bench.mjs), the newest
+     * STATS_KEPT of each, ms: `latency_ms`, per delta applied, the wall clock
+     * (Date.now()) once the views have been drawn in the next animation frame
+     * minus the delta's `built_unix_ms` (when the server built it); `frame_ms`,
+     * the intervals between animation frames; `render_ms`, the time the views
+     * took in each frame they drew.
+     */
+    this.stats = { latency_ms: [], frame_ms: [], render_ms: [], deltas: 0 };
+    this.built_ = []; // the built_unix_ms of the deltas applied since the last frame
+    this.frameAt_ = 0;
   }
 
   /** Calls fn(store) after each change (coalesced to one call per frame). */
@@ -47,6 +60,7 @@ export class Store {
 
   /** Opens the WebSocket stream (same origin) and keeps it open. */
   connect() {
+    if (!this.frameAt_) this.countFrames_();
     const scheme = location.protocol === 'https:' ? 'wss' : 'ws';
     const ws = new WebSocket(`${scheme}://${location.host}/ws`);
     this.ws_ = ws;
@@ -88,7 +102,10 @@ export class Store {
         this.applySnapshot(message.state || {});
         break;
       case 'delta':
-        if (this.hasState) this.applyDelta_(message);
+        if (!this.hasState) break;
+        this.applyDelta_(message);
+        this.stats.deltas += 1;
+        if (typeof message.built_unix_ms === 'number') this.built_.push(message.built_unix_ms);
         break;
       case 'replay':
         this.replay = message;
@@ -151,10 +168,22 @@ export class Store {
     return [...this.vehicles.values()].sort((a, b) => a.id - b.id);
   }
 
+  // Records every animation frame's interval in stats.frame_ms, for as long as the page lives.
+  countFrames_() {
+    this.frameAt_ = performance.now();
+    const frame = (at) => {
+      keep(this.stats.frame_ms, at - this.frameAt_);
+      this.frameAt_ = at;
+      requestAnimationFrame(frame);
+    };
+    requestAnimationFrame(frame);
+  }
+
   changed_() {
     if (this.frame_) return;
     const run = () => {
       this.frame_ = 0;
+      const start = performance.now();
       for (const fn of this.listeners_) {
         try {
           fn(this);
@@ -162,8 +191,18 @@ export class Store {
           console.error('fireswarm: a view failed', e);
         }
       }
+      keep(this.stats.render_ms, performance.now() - start);
+      const now = Date.now();
+      for (const built of this.built_) keep(this.stats.latency_ms, now - built);
+      this.built_ = [];
     };
     // A hidden tab gets no animation frames: it still follows, 5 times a second.
     this.frame_ = document.hidden ? setTimeout(run, 200) : requestAnimationFrame(run);
   }
+}
+
+// Appends `value` to `list`, dropping the oldest beyond STATS_KEPT.
+function keep(list, value) {
+  list.push(value);
+  if (list.length > STATS_KEPT) list.splice(0, list.length - STATS_KEPT);
 }

@@ -105,6 +105,9 @@ class WebServer {
   std::uint64_t refused() const;
   /// WebSocket clients connected now.
   std::size_t clients() const;
+  /// CPU time the io thread (every connection's HTTP, WebSocket and TLS work)
+  /// has taken since it started, s: the adapter's own share of the process's CPU.
+  double io_cpu_seconds() const;
 
   struct Impl;
 
