@@ -19,6 +19,10 @@ constexpr double kPlanPeriodS = 5.0;    // plan_t's period, as LcmRates' 0.2 Hz
 // clock), not at every update.
 constexpr double kCoveragePeriodS = 1.0;
 constexpr int kCoveragePeriodMs = 1000;  // ... and of the wall clock
+// The whole state (every drone's row and trail, every track) is serialised once a
+// wall second for GET /api/state, and at the next update when a new WebSocket client
+// waits for its snapshot; the 5 Hz updates send only the delta (WebServer::HoldSnapshots).
+constexpr int kStatePeriodMs = 1000;
 constexpr int kAccepted = 202;
 constexpr int kBadRequest = 400;
 constexpr int kConflict = 409;
@@ -119,6 +123,7 @@ void WebFeed::Update(const server::Server& server, double now_s, std::int64_t ut
     next_plan_s_ = now_s + kPlanPeriodS;
     model_.OnPlan(server::ToPlan(server, utime));
     plan_document_ = model_.Plan().dump();
+    plan_documents_changed_ = true;
   }
   if (server.commands_version() != commands_version_) {
     for (const server::CommandRecord& record : server.commands()) {
@@ -141,14 +146,24 @@ void WebFeed::Update(const server::Server& server, double now_s, std::int64_t ut
     next_coverage_s_ = now_s + kCoveragePeriodS;
     next_coverage_wall_ = wall + std::chrono::milliseconds(kCoveragePeriodMs);
     coverage_document_ = model_.Coverage().dump();
+    plan_documents_changed_ = true;
   }
   const std::int64_t built_unix_ms = UnixMillisNow();
-  nlohmann::json state = model_.State();
-  state["built_unix_ms"] = built_unix_ms;
-  web_.SetDocuments(state.dump(), plan_document_, coverage_document_);
+  // A delta may tell the page to fetch the plan: it is served before the delta goes.
+  if (plan_documents_changed_) {
+    web_.SetPlanDocuments(plan_document_, coverage_document_);
+    plan_documents_changed_ = false;
+  }
   if (std::optional<nlohmann::json> delta = model_.TakeDelta()) {
     (*delta)["built_unix_ms"] = built_unix_ms;
+    web_.HoldSnapshots();  // the state document does not hold this delta yet
     web_.Broadcast(delta->dump());
+  }
+  if (web_.snapshot_wanted() || wall >= next_state_wall_) {
+    next_state_wall_ = wall + std::chrono::milliseconds(kStatePeriodMs);
+    nlohmann::json state = model_.State();
+    state["built_unix_ms"] = built_unix_ms;
+    web_.SetDocuments(state.dump(), plan_document_, coverage_document_);
   }
 }
 

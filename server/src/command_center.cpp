@@ -71,7 +71,7 @@ void CommandCenter::OnPlan(const plan_t& message) {
     return;
   }
   try {
-    coverage_ = internal::CoverageRaster::FromPlan(plan);
+    coverage_ = internal::CoverageRaster::FromPlan(plan, std::move(coverage_));
   } catch (const std::invalid_argument& error) {
     coverage_.reset();
     plan_info_["error"] =

@@ -59,29 +59,45 @@ std::string FeaturesOfKind(const nlohmann::json& plan, const std::string& kind, 
 
 }  // namespace
 
-std::unique_ptr<CoverageRaster> CoverageRaster::FromPlan(const nlohmann::json& plan) {
+std::unique_ptr<CoverageRaster> CoverageRaster::FromPlan(const nlohmann::json& plan,
+                                                         std::unique_ptr<CoverageRaster> current) {
   bool has_area = false;
   bool has_no_fly = false;
   std::string area_text = FeaturesOfKind(plan, "area", &has_area);
   if (!has_area) return nullptr;
   std::string no_fly_text = FeaturesOfKind(plan, "no_fly", &has_no_fly);
+  const auto camera_member = plan.find("camera");
+  std::string source = area_text + "\n" + no_fly_text + "\n" +
+                       (camera_member == plan.end() ? "" : camera_member->dump());
+  if (current && current->source_ == source) return current;
   PlanCamera camera = ReadCamera(plan);
   std::optional<planner::GeoJsonText> no_fly;
   if (has_no_fly) no_fly = planner::GeoJsonText{std::move(no_fly_text), "plan no_fly"};
   planner::SearchArea area =
       planner::ParseSearchArea(planner::GeoJsonText{std::move(area_text), "plan area"}, no_fly);
-  return std::unique_ptr<CoverageRaster>(new CoverageRaster(std::move(area), camera));
+  return std::unique_ptr<CoverageRaster>(
+      new CoverageRaster(std::move(area), camera, std::move(source)));
 }
 
-CoverageRaster::CoverageRaster(planner::SearchArea area, PlanCamera camera)
-    : area_(std::move(area)), camera_(camera), grid_(area_.area, area_.no_fly) {}
+CoverageRaster::CoverageRaster(planner::SearchArea area, PlanCamera camera, std::string source)
+    : source_(std::move(source)),
+      area_(std::move(area)),
+      camera_(camera),
+      grid_(area_.area, area_.no_fly) {}
 
 void CoverageRaster::Mark(const vehicle_state_t& message) {
   // Not heard yet, or no GPS fix: no position to see from.
   if (message.telemetry_age_s < 0.0 || !message.has_position) return;
+  const auto [marked, first] =
+      marked_sample_ms_.try_emplace(message.receiver_id, message.vehicle_time_ms);
+  if (!first) {
+    if (marked->second == message.vehicle_time_ms) return;
+    marked->second = message.vehicle_time_ms;
+  }
   const common::EastNorth position = area_.frame.ToLocal({message.lat_deg, message.lon_deg});
-  grid_.Mark(Eigen::Vector2d(position.east_m, position.north_m), message.heading_deg * common::kRadPerDeg, message.altitude_m,
-             camera_.model, camera_.pitch_deg);
+  grid_.Mark(Eigen::Vector2d(position.east_m, position.north_m),
+             message.heading_deg * common::kRadPerDeg, message.altitude_m, camera_.model,
+             camera_.pitch_deg);
 }
 
 nlohmann::json CoverageRaster::ToJson() const {

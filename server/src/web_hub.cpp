@@ -11,6 +11,10 @@ Text EmptyObject() {
   return std::make_shared<const std::string>("{}");
 }
 
+Text SnapshotMessage(const Text& state) {
+  return std::make_shared<const std::string>(R"({"type":"snapshot","state":)" + *state + "}");
+}
+
 // Takes everything from `queue` once it has something or `wait` passed.
 template <class T>
 std::vector<T> TakeAll(std::unique_lock<std::mutex>& lock, std::condition_variable& arrived,
@@ -37,8 +41,39 @@ Documents Hub::documents() const {
 }
 
 void Hub::SetDocuments(Text state, Text plan, Text coverage) {
+  std::vector<std::shared_ptr<WsClient>> released;
+  Text snapshot;
+  {
+    const std::lock_guard lock(mutex_);
+    documents_ = {std::move(state), std::move(plan), std::move(coverage)};
+    snapshots_held_ = false;
+    if (waiting_.empty()) return;
+    snapshot = SnapshotMessage(documents_.state);
+    for (auto& [id, client] : waiting_) {
+      if (auto locked = client.lock()) released.push_back(std::move(locked));
+      clients_.emplace(id, std::move(client));
+    }
+    waiting_.clear();
+  }
+  // Sent after the lock. SetDocuments and Broadcast come from one thread (the
+  // feed's), so no broadcast overtakes the snapshot on a client's queue.
+  for (const auto& client : released) client->Send(snapshot);
+}
+
+void Hub::SetPlanDocuments(Text plan, Text coverage) {
   const std::lock_guard lock(mutex_);
-  documents_ = {std::move(state), std::move(plan), std::move(coverage)};
+  documents_.plan = std::move(plan);
+  documents_.coverage = std::move(coverage);
+}
+
+void Hub::HoldSnapshots() {
+  const std::lock_guard lock(mutex_);
+  snapshots_held_ = true;
+}
+
+bool Hub::snapshot_wanted() const {
+  const std::lock_guard lock(mutex_);
+  return !waiting_.empty();
 }
 
 std::uint64_t Hub::QueueCommand(nlohmann::json body, std::string peer, Responder responder) {
@@ -87,17 +122,23 @@ void Hub::Refuse(const std::string& peer, const std::string& reason) {
   std::cerr << "web: refused a command from " << peer << ": " << reason << std::endl;
 }
 
-std::uint64_t Hub::AddClient(std::weak_ptr<WsClient> client, Text* state) {
+std::uint64_t Hub::AddClient(std::weak_ptr<WsClient> client, Text* snapshot) {
   const std::lock_guard lock(mutex_);
   const std::uint64_t id = next_id_++;
-  clients_.emplace(id, std::move(client));
-  *state = documents_.state;
+  if (snapshots_held_) {
+    waiting_.emplace(id, std::move(client));
+    *snapshot = nullptr;
+  } else {
+    clients_.emplace(id, std::move(client));
+    *snapshot = SnapshotMessage(documents_.state);
+  }
   return id;
 }
 
 void Hub::RemoveClient(std::uint64_t id) {
   const std::lock_guard lock(mutex_);
   clients_.erase(id);
+  waiting_.erase(id);
 }
 
 void Hub::Broadcast(const Text& message) {
@@ -125,7 +166,7 @@ bool Hub::SendTo(std::uint64_t id, const Text& message) {
 
 std::size_t Hub::clients() const {
   const std::lock_guard lock(mutex_);
-  return clients_.size();
+  return clients_.size() + waiting_.size();
 }
 
 void Hub::PushClientMessage(ClientMessage message) {
@@ -148,6 +189,7 @@ void Hub::DropAll() {
     const std::lock_guard lock(mutex_);
     open.swap(open_);
     clients.swap(clients_);
+    waiting_.clear();
     commands_.clear();
   }
 }

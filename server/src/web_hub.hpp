@@ -47,7 +47,15 @@ class Hub {
   const MbTiles* tiles() const { return tiles_.get(); }
 
   Documents documents() const;
+  /// Sets the three documents; every client waiting for its snapshot gets it now.
   void SetDocuments(Text state, Text plan, Text coverage);
+  /// Sets the plan and coverage documents; the state stays.
+  void SetPlanDocuments(Text plan, Text coverage);
+  /// The state document no longer holds everything broadcast: clients that connect
+  /// from now on wait for the next SetDocuments for their snapshot.
+  void HoldSnapshots();
+  /// True while a client waits for its snapshot.
+  bool snapshot_wanted() const;
 
   /// Queues a command for the caller; `responder` is called once by Answer().
   std::uint64_t QueueCommand(nlohmann::json body, std::string peer, Responder responder);
@@ -61,9 +69,11 @@ class Hub {
   void Refuse(const std::string& peer, const std::string& reason);
   std::uint64_t refused() const { return refused_.load(); }
 
-  /// Registers a client; returns its number and the state document it must get
-  /// first (taken together, so no broadcast falls between them).
-  std::uint64_t AddClient(std::weak_ptr<WsClient> client, Text* state);
+  /// Registers a client; returns its number and the snapshot message it must get
+  /// first (taken together, so no broadcast falls between them). While snapshots
+  /// are held, the snapshot is null: the client gets it, and the broadcasts after
+  /// it, with the next SetDocuments.
+  std::uint64_t AddClient(std::weak_ptr<WsClient> client, Text* snapshot);
   void RemoveClient(std::uint64_t id);
   void Broadcast(const Text& message);
   bool SendTo(std::uint64_t id, const Text& message);
@@ -84,6 +94,8 @@ class Hub {
   std::deque<PendingCommand> commands_;      // not taken yet
   std::map<std::uint64_t, Responder> open_;  // not answered yet
   std::map<std::uint64_t, std::weak_ptr<WsClient>> clients_;
+  std::map<std::uint64_t, std::weak_ptr<WsClient>> waiting_;  // for their snapshot
+  bool snapshots_held_ = false;
   std::deque<ClientMessage> client_messages_;
   std::atomic<std::uint64_t> refused_{0};
 };

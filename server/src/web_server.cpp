@@ -150,6 +150,19 @@ void WebServer::SetDocuments(std::string state_json, std::string plan_json,
                            std::make_shared<const std::string>(std::move(coverage_json)));
 }
 
+void WebServer::SetPlanDocuments(std::string plan_json, std::string coverage_json) {
+  impl_->hub->SetPlanDocuments(std::make_shared<const std::string>(std::move(plan_json)),
+                               std::make_shared<const std::string>(std::move(coverage_json)));
+}
+
+void WebServer::HoldSnapshots() {
+  impl_->hub->HoldSnapshots();
+}
+
+bool WebServer::snapshot_wanted() const {
+  return impl_->hub->snapshot_wanted();
+}
+
 void WebServer::Broadcast(std::string json) {
   impl_->hub->Broadcast(std::make_shared<const std::string>(std::move(json)));
 }

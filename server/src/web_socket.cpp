@@ -50,9 +50,9 @@ class WsSession : public WsClient, public std::enable_shared_from_this<WsSession
 
  private:
   void OnAccept() {
-    Text state;
-    id_ = hub_->AddClient(this->weak_from_this(), &state);
-    Enqueue(std::make_shared<const std::string>(R"({"type":"snapshot","state":)" + *state + "}"));
+    Text snapshot;
+    id_ = hub_->AddClient(this->weak_from_this(), &snapshot);
+    if (snapshot) Enqueue(std::move(snapshot));  // else the hub sends it once it has one
     Read();
   }
 

@@ -22,6 +22,7 @@ inline vehicle_state_t Flying(int id, common::EastNorth offset_m, double altitud
   vehicle_state_t m{};
   m.utime = utime;
   m.receiver_id = static_cast<std::int16_t>(id);
+  m.vehicle_time_ms = utime / 1000;  // a new telemetry sample at every call
   m.has_position = true;
   m.lat_deg = point.lat_deg;
   m.lon_deg = point.lon_deg;

@@ -35,7 +35,7 @@ nlohmann::json PlanJson() {
 }
 
 plan_t PlanMessage(const std::string& geojson, std::int64_t utime) {
-  plan_t plan;
+  plan_t plan{};
   plan.utime = utime;
   plan.mission_id = 1;
   plan.geojson = geojson;
@@ -128,7 +128,39 @@ TEST(CommandCenterPlan, ADroneOverTheAreaMarksTheCellsItsCameraSees) {
   EXPECT_EQ(seen_bits(), 0U);
   drone.has_position = true;
   center.OnVehicleState(drone);
-  EXPECT_GT(seen_bits(), 0U);
+  const std::size_t first = seen_bits();
+  EXPECT_GT(first, 0U);
+  // The same telemetry sample published again (states go at 5 Hz, telemetry at
+  // 1-2 Hz) is not marked again, even were its position another.
+  vehicle_state_t again = test::Flying(1, {150.0, 50.0}, 60.0, 1'200'000);
+  again.vehicle_time_ms = drone.vehicle_time_ms;
+  center.OnVehicleState(again);
+  EXPECT_EQ(seen_bits(), first);
+  again.vehicle_time_ms += 1000;  // a new sample there
+  center.OnVehicleState(again);
+  EXPECT_GT(seen_bits(), first);
+}
+
+// The plan changes with the lanes (a handover, an investigation): the cells seen
+// stay while the area, no-fly zones and camera are the same; a new area starts
+// a new raster.
+TEST(CommandCenterPlan, NewLanesKeepTheCoverageANewAreaStartsAfresh) {
+  CommandCenter center({});
+  nlohmann::json plan = PlanJson();
+  center.OnPlan(PlanMessage(plan.dump(), 1'000'000));
+  center.OnVehicleState(test::Flying(1, {100.0, 50.0}, 60.0, 1'000'000));
+  const std::string seen = center.Coverage()["seen"].get<std::string>();
+  ASSERT_NE(seen.find_first_not_of("A="), std::string::npos) << "some cell seen";
+  plan["features"][1]["geometry"]["coordinates"][1] =
+      plan["features"][1]["geometry"]["coordinates"][0];
+  center.OnPlan(PlanMessage(plan.dump(), 6'000'000));
+  EXPECT_EQ(center.State()["plan"]["version"], 2) << "the plan did change";
+  EXPECT_EQ(center.Coverage()["seen"].get<std::string>(), seen);
+  plan["features"][0]["geometry"]["coordinates"][0][2][0] =
+      plan["features"][0]["geometry"]["coordinates"][0][2][0].get<double>() + 0.001;
+  center.OnPlan(PlanMessage(plan.dump(), 11'000'000));
+  EXPECT_EQ(center.Coverage()["seen"].get<std::string>().find_first_not_of("A="), std::string::npos)
+      << "nothing seen yet over the new area";
 }
 
 }  // namespace

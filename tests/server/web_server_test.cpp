@@ -4,6 +4,7 @@
 
 #include <ctime>
 #include <future>
+#include <thread>
 
 #include "web_test_support.hpp"
 
@@ -194,6 +195,43 @@ TEST_F(WebServerTest, WebSocketClientsGetTheSnapshotThenEveryBroadcast) {
     EXPECT_EQ(client->Read(), R"({"type":"delta","time_s":2.2})");
     EXPECT_EQ(client->Read(), R"({"type":"delta","time_s":2.4})");
   }
+}
+
+// The feed serialises the whole state seldom and broadcasts deltas often: a client
+// that connects while the state document lags the deltas waits for a fresh one,
+// and gets no delta before it (its snapshot holds them).
+TEST_F(WebServerTest, HeldSnapshotsWaitForTheNextStateWithoutTheDeltasBefore) {
+  WebServer server(Config());
+  server.SetDocuments(R"({"time_s":2})", "{}", "{}");
+  WsTestClient early(server.port());
+  EXPECT_EQ(nlohmann::json::parse(early.Read()).at("state").at("time_s"), 2);
+  EXPECT_FALSE(server.snapshot_wanted());
+  server.HoldSnapshots();
+  server.Broadcast(R"({"type":"delta","time_s":2.2})");
+  WsTestClient late(server.port());
+  const auto deadline = std::chrono::steady_clock::now() + kWait;
+  while (!server.snapshot_wanted() && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::yield();  // the io thread registers it after the handshake
+  }
+  ASSERT_TRUE(server.snapshot_wanted());
+  EXPECT_EQ(server.clients(), 2U);
+  server.Broadcast(R"({"type":"delta","time_s":2.4})");
+  server.SetDocuments(R"({"time_s":2.4})", "{}", "{}");
+  EXPECT_FALSE(server.snapshot_wanted());
+  server.Broadcast(R"({"type":"delta","time_s":2.6})");
+  EXPECT_EQ(late.Read(), R"({"type":"snapshot","state":{"time_s":2.4}})");
+  EXPECT_EQ(late.Read(), R"({"type":"delta","time_s":2.6})");
+  for (const char* time : {"2.2", "2.4", "2.6"}) {
+    EXPECT_EQ(early.Read(), std::string(R"({"type":"delta","time_s":)") + time + "}");
+  }
+  // Not held any more: the next client gets the state at once.
+  WsTestClient next(server.port());
+  EXPECT_EQ(next.Read(), R"({"type":"snapshot","state":{"time_s":2.4}})");
+  // GET /api/plan follows SetPlanDocuments; the state stays.
+  server.SetPlanDocuments(R"({"plan":2})", R"({"rows":2})");
+  EXPECT_EQ(Get(server.port(), "/api/plan").body(), R"({"plan":2})");
+  EXPECT_EQ(Get(server.port(), "/api/coverage").body(), R"({"rows":2})");
+  EXPECT_EQ(Get(server.port(), "/api/state").body(), R"({"time_s":2.4})");
 }
 
 TEST_F(WebServerTest, AMalformedClientMessageGetsAnErrorAndTheServerServesOn) {

@@ -83,6 +83,17 @@ class WebServer {
   /// on; `state` is also each new WebSocket client's snapshot. Until the first
   /// call, each is `{}`.
   void SetDocuments(std::string state_json, std::string plan_json, std::string coverage_json);
+  /// Replaces the /api/plan and /api/coverage documents; the state stays.
+  void SetPlanDocuments(std::string plan_json, std::string coverage_json);
+  /// For a caller that rebuilds the state document less often than it broadcasts
+  /// (serialising a big fleet's state at every update costs more than the delta):
+  /// call before broadcasting a change the state document does not hold yet. New
+  /// WebSocket clients then wait, without broadcasts, until the next SetDocuments
+  /// gives them a snapshot that holds it. SetDocuments, SetPlanDocuments,
+  /// HoldSnapshots and Broadcast are to be called from one thread.
+  void HoldSnapshots();
+  /// True while a WebSocket client waits for its snapshot (see HoldSnapshots).
+  bool snapshot_wanted() const;
 
   /// Sends `json` to every connected WebSocket client (queued per client).
   void Broadcast(std::string json);
