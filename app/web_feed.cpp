@@ -54,7 +54,14 @@ std::string ErrorBody(const std::string& why) {
 }  // namespace
 
 WebFeed::WebFeed(server::WebServer& web, const std::string& source)
-    : web_(web), model_(ModelConfig(source)), plan_document_(model_.Plan().dump()) {}
+    : web_(web), model_(ModelConfig(source)), plan_document_(model_.Plan().dump()) {
+  // GET /api/state answers with the model's source from the start; WebSocket
+  // clients wait for the first update's state (Update always serialises it).
+  nlohmann::json state = model_.State();
+  state["built_unix_ms"] = UnixMillisNow();
+  web_.SetDocuments(state.dump(), plan_document_, coverage_document_);
+  web_.HoldSnapshots();
+}
 
 void WebFeed::Step(server::Server& server, common::Nanos now, std::int64_t utime,
                    std::int64_t utime_at_zero) {
