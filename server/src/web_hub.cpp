@@ -82,6 +82,7 @@ std::uint64_t Hub::QueueCommand(nlohmann::json body, std::string peer, Responder
     const std::lock_guard lock(mutex_);
     id = next_id_++;
     commands_.push_back({id, std::move(body), std::move(peer)});
+    commands_waiting_.store(true, std::memory_order_release);
     open_.emplace(id, std::move(responder));
   }
   arrived_.notify_all();
@@ -89,8 +90,12 @@ std::uint64_t Hub::QueueCommand(nlohmann::json body, std::string peer, Responder
 }
 
 std::vector<PendingCommand> Hub::TakeCommands(std::chrono::milliseconds wait) {
+  // The feed asks at every simulation step; most of the time nothing waits.
+  if (wait.count() <= 0 && !commands_waiting_.load(std::memory_order_acquire)) return {};
   std::unique_lock lock(mutex_);
-  return TakeAll(lock, arrived_, commands_, wait);
+  std::vector<PendingCommand> taken = TakeAll(lock, arrived_, commands_, wait);
+  commands_waiting_.store(false, std::memory_order_release);
+  return taken;
 }
 
 bool Hub::Answer(std::uint64_t id, int http_status, std::string json_body) {
@@ -173,13 +178,17 @@ void Hub::PushClientMessage(ClientMessage message) {
   {
     const std::lock_guard lock(mutex_);
     client_messages_.push_back(std::move(message));
+    messages_waiting_.store(true, std::memory_order_release);
   }
   arrived_.notify_all();
 }
 
 std::vector<ClientMessage> Hub::TakeClientMessages(std::chrono::milliseconds wait) {
+  if (wait.count() <= 0 && !messages_waiting_.load(std::memory_order_acquire)) return {};
   std::unique_lock lock(mutex_);
-  return TakeAll(lock, arrived_, client_messages_, wait);
+  std::vector<ClientMessage> taken = TakeAll(lock, arrived_, client_messages_, wait);
+  messages_waiting_.store(false, std::memory_order_release);
+  return taken;
 }
 
 void Hub::DropAll() {

@@ -98,6 +98,10 @@ class Hub {
   bool snapshots_held_ = false;
   std::deque<ClientMessage> client_messages_;
   std::atomic<std::uint64_t> refused_{0};
+  // Set (under mutex_) when one is queued, cleared when all are taken: a look
+  // without the lock for the caller that polls at every step.
+  std::atomic<bool> commands_waiting_{false};
+  std::atomic<bool> messages_waiting_{false};
 };
 
 }  // namespace fireswarm::server::web
