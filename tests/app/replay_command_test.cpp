@@ -34,19 +34,7 @@ using std::chrono::seconds;
 using std::chrono::steady_clock;
 
 // 800 m x 500 m, two drones, one fire near the launch: tracked within 120 s.
-constexpr const char* kScenario =
-    "name: tiny\n"
-    "seed: 7\n"
-    "duration_s: 120\n"
-    "area:\n"
-    "  polygon: [[7.0, 45.0], [7.010146, 45.0], [7.010146, 45.0045], [7.0, 45.0045]]\n"
-    "fleet:\n"
-    "  count: 2\n"
-    "  launch: {lat: 44.9995, lon: 7.005}\n"
-    "fires:\n"
-    "  - {lat: 45.00230, lon: 7.00480}\n"
-    "expect:\n"
-    "  no_collisions: true\n";
+const std::string kScenario = TinyScenario(120);
 
 constexpr auto kTimeout = seconds(60);
 

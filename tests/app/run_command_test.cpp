@@ -28,24 +28,6 @@
 namespace fireswarm::app {
 namespace {
 
-// 800 m x 500 m, two drones, one fire; `duration` and `expect` vary per test.
-std::string Scenario(double duration_s, const std::string& expect) {
-  return "name: tiny\n"
-         "seed: 7\n"
-         "duration_s: " +
-         std::to_string(duration_s) +
-         "\n"
-         "area:\n"
-         "  polygon: [[7.0, 45.0], [7.010146, 45.0], [7.010146, 45.0045], [7.0, 45.0045]]\n"
-         "fleet:\n"
-         "  count: 2\n"
-         "  launch: {lat: 44.9995, lon: 7.005}\n"
-         "fires:\n"
-         "  - {lat: 45.00230, lon: 7.00480}\n"
-         "expect:\n" +
-         expect;
-}
-
 // One event of an LCM log, copied out of lcm::LogFile's buffer.
 struct LoggedEvent {
   std::int64_t timestamp = 0;
@@ -107,11 +89,11 @@ class RunCommandTest : public CommandTest {
 };
 
 TEST_F(RunCommandTest, ExitsZeroWhenEveryExpectationHoldsAndWritesFiles) {
-  const std::string scenario = Write("ok.yaml", Scenario(900.0,
-                                                         "  all_fires_confirmed_within_s: 900\n"
-                                                         "  max_fused_error_m: 10\n"
-                                                         "  no_collisions: true\n"
-                                                         "  min_coverage: 0.5\n"));
+  const std::string scenario = Write("ok.yaml", TinyScenario(900.0,
+                                                             "  all_fires_confirmed_within_s: 900\n"
+                                                             "  max_fused_error_m: 10\n"
+                                                             "  no_collisions: true\n"
+                                                             "  min_coverage: 0.5\n"));
   const RunResult result =
       RunFireswarm("run " + scenario + " --report " + PathOf("r.json") + " --junit " +
                    PathOf("r.xml") + " --svg " + PathOf("map.svg"));
@@ -129,7 +111,7 @@ TEST_F(RunCommandTest, ExitsZeroWhenEveryExpectationHoldsAndWritesFiles) {
 }
 
 TEST_F(RunCommandTest, ExitsOneWhenAnExpectationFails) {
-  const std::string scenario = Write("short.yaml", Scenario(30.0, "  min_coverage: 0.9\n"));
+  const std::string scenario = Write("short.yaml", TinyScenario(30.0, "  min_coverage: 0.9\n"));
   const RunResult result = RunFireswarm("run " + scenario + " --report " + PathOf("r.json"));
   EXPECT_EQ(result.exit_code, 1) << Output(result);
   EXPECT_TRUE(Mentions(result, "FAIL  min_coverage")) << Output(result);
@@ -141,7 +123,7 @@ TEST_F(RunCommandTest, ExitsOneWhenAnExpectationFails) {
 
 TEST_F(RunCommandTest, ExitsTwoOnABadScenarioNamingFileAndKey) {
   const std::string scenario =
-      Write("bad.yaml", Scenario(30.0, "  min_coverage: 0.5\n") + "fleeet: 3\n");
+      Write("bad.yaml", TinyScenario(30.0, "  min_coverage: 0.5\n") + "fleeet: 3\n");
   const RunResult result = RunFireswarm("run " + scenario + " --report " + PathOf("r.json") +
                                         " --log " + PathOf("r.lcmlog"));
   EXPECT_EQ(result.exit_code, 2) << Output(result);
@@ -154,7 +136,7 @@ TEST_F(RunCommandTest, ExitsTwoOnAMissingFileOrABadFlag) {
   RunResult result = RunFireswarm("run " + PathOf("missing.yaml"));
   EXPECT_EQ(result.exit_code, 2) << Output(result);
   EXPECT_TRUE(Mentions(result, "missing.yaml")) << Output(result);
-  const std::string scenario = Write("ok.yaml", Scenario(30.0, "  no_collisions: true\n"));
+  const std::string scenario = Write("ok.yaml", TinyScenario(30.0, "  no_collisions: true\n"));
   result = RunFireswarm("run " + scenario + " --reprot x.json");
   EXPECT_EQ(result.exit_code, 2) << Output(result);
   EXPECT_TRUE(Mentions(result, "reprot")) << Output(result);
@@ -163,7 +145,7 @@ TEST_F(RunCommandTest, ExitsTwoOnAMissingFileOrABadFlag) {
 }
 
 TEST_F(RunCommandTest, LogsTheServerOnLcmInSimulatedTime) {
-  const std::string scenario = Write("ok.yaml", Scenario(60.0, "  no_collisions: true\n"));
+  const std::string scenario = Write("ok.yaml", TinyScenario(60.0, "  no_collisions: true\n"));
   const RunResult result = RunFireswarm("run " + scenario + " --report " + PathOf("r.json") +
                                         " --log " + PathOf("run.lcmlog"));
   ASSERT_EQ(result.exit_code, 0) << Output(result);
@@ -254,7 +236,7 @@ TEST_F(RunCommandTest, LogsTheServerOnLcmInSimulatedTime) {
 }
 
 TEST_F(RunCommandTest, TheSameScenarioGivesTheSameLogAndPublishesLive) {
-  const std::string scenario = Write("ok.yaml", Scenario(30.0, "  no_collisions: true\n"));
+  const std::string scenario = Write("ok.yaml", TinyScenario(30.0, "  no_collisions: true\n"));
   const RunResult first = RunFireswarm("run " + scenario + " --log " + PathOf("a.lcmlog"));
   const RunResult second =
       RunFireswarm("run " + scenario + " --log " + PathOf("b.lcmlog") + " --lcm memq://");
@@ -267,7 +249,7 @@ TEST_F(RunCommandTest, TheSameScenarioGivesTheSameLogAndPublishesLive) {
 }
 
 TEST_F(RunCommandTest, ExitsTwoOnABadLcmUrlNamingTheFlagAndWritesNothing) {
-  const std::string scenario = Write("ok.yaml", Scenario(30.0, "  no_collisions: true\n"));
+  const std::string scenario = Write("ok.yaml", TinyScenario(30.0, "  no_collisions: true\n"));
   RunResult result = RunFireswarm("run " + scenario + " --lcm nosuchprovider://x --log " +
                                   PathOf("r.lcmlog") + " --report " + PathOf("r.json"));
   EXPECT_EQ(result.exit_code, 2) << Output(result);
@@ -280,7 +262,7 @@ TEST_F(RunCommandTest, ExitsTwoOnABadLcmUrlNamingTheFlagAndWritesNothing) {
 }
 
 TEST_F(RunCommandTest, ExitsTwoOnALogInAMissingDirectoryNamingThePath) {
-  const std::string scenario = Write("ok.yaml", Scenario(30.0, "  no_collisions: true\n"));
+  const std::string scenario = Write("ok.yaml", TinyScenario(30.0, "  no_collisions: true\n"));
   const std::string log = PathOf("no_such_dir/r.lcmlog");
   RunResult result = RunFireswarm("run " + scenario + " --log " + log);
   EXPECT_EQ(result.exit_code, 2) << Output(result);

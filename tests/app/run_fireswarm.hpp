@@ -14,6 +14,26 @@
 
 namespace fireswarm::app {
 
+/// A tiny scenario: 800 m x 500 m, two drones, one fire near the launch (tracked
+/// within 120 s); `duration_s` and the `expect:` block's lines vary per test.
+inline std::string TinyScenario(double duration_s,
+                                const std::string& expect = "  no_collisions: true\n") {
+  return "name: tiny\n"
+         "seed: 7\n"
+         "duration_s: " +
+         std::to_string(duration_s) +
+         "\n"
+         "area:\n"
+         "  polygon: [[7.0, 45.0], [7.010146, 45.0], [7.010146, 45.0045], [7.0, 45.0045]]\n"
+         "fleet:\n"
+         "  count: 2\n"
+         "  launch: {lat: 44.9995, lon: 7.005}\n"
+         "fires:\n"
+         "  - {lat: 45.00230, lon: 7.00480}\n"
+         "expect:\n" +
+         expect;
+}
+
 struct RunResult {
   int exit_code = -1;
   std::vector<std::string> lines;  // stdout and stderr, line by line

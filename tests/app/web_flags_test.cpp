@@ -25,19 +25,7 @@ namespace beast = boost::beast;
 namespace http = beast::http;
 
 // 800 m x 500 m, two drones, one fire, 30 simulated s.
-constexpr const char* kScenario =
-    "name: tiny\n"
-    "seed: 7\n"
-    "duration_s: 30\n"
-    "area:\n"
-    "  polygon: [[7.0, 45.0], [7.010146, 45.0], [7.010146, 45.0045], [7.0, 45.0045]]\n"
-    "fleet:\n"
-    "  count: 2\n"
-    "  launch: {lat: 44.9995, lon: 7.005}\n"
-    "fires:\n"
-    "  - {lat: 45.00230, lon: 7.00480}\n"
-    "expect:\n"
-    "  no_collisions: true\n";
+const std::string kScenario = TinyScenario(30);
 
 http::response<http::string_body> Fetch(std::uint16_t port, http::verb verb,
                                         const std::string& target, const std::string& body = "",
