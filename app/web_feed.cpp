@@ -13,16 +13,11 @@ namespace {
 constexpr double kUpdatePeriodS = 0.2;  // 5 Hz (docs/command_center.md)
 constexpr int kUpdatePeriodMs = 200;    // ... and at most 5 Hz of the wall clock
 constexpr double kRadioWindowS = 2.0;   // radio_stats_t's window, as LcmRates' 0.5 Hz
-constexpr double kPlanPeriodS = 5.0;    // plan_t's period, as LcmRates' 0.2 Hz
 // The coverage raster is up to 2 million cells; the page fetches it every few
-// seconds, so it is rebuilt once a second (of the run's clock and of the wall
-// clock), not at every update.
+// seconds, so it is rebuilt at most once a second (of the run's clock and of the
+// wall clock), and only when a cell was seen since.
 constexpr double kCoveragePeriodS = 1.0;
 constexpr int kCoveragePeriodMs = 1000;  // ... and of the wall clock
-// The whole state (every drone's row and trail, every track) is serialised once a
-// wall second for GET /api/state, and at the next update when a new WebSocket client
-// waits for its snapshot; the 5 Hz updates send only the delta (WebServer::HoldSnapshots).
-constexpr int kStatePeriodMs = 1000;
 constexpr int kAccepted = 202;
 constexpr int kBadRequest = 400;
 constexpr int kConflict = 409;
@@ -77,6 +72,14 @@ void WebFeed::Step(server::Server& server, common::Nanos now, std::int64_t utime
     next_update_wall_ = wall + std::chrono::milliseconds(kUpdatePeriodMs);
     Update(server, now_s, utime, utime_at_zero);
   }
+  // The whole state (every drone's row and trail, every track) is serialised only
+  // for a new WebSocket client's snapshot or a GET /api/state, at the step after it
+  // asked: the updates send the delta alone (WebServer::HoldSnapshots).
+  if (web_.snapshot_wanted()) {
+    nlohmann::json state = model_.State();
+    state["built_unix_ms"] = UnixMillisNow();
+    web_.SetDocuments(state.dump(), plan_document_, coverage_document_);
+  }
   cpu_s_ += CpuSeconds(CLOCK_THREAD_CPUTIME_ID) - cpu_start_s;
 }
 
@@ -126,8 +129,10 @@ void WebFeed::TakeCommands(server::Server& server, common::Nanos now) {
 void WebFeed::Update(const server::Server& server, double now_s, std::int64_t utime,
                      std::int64_t utime_at_zero) {
   for (; refused_noted_ < web_.refused(); ++refused_noted_) model_.NoteRefused();
-  if (server.mission() != nullptr && now_s + 1e-9 >= next_plan_s_) {
-    next_plan_s_ = now_s + kPlanPeriodS;
+  // The plan changes only with the missions (a handover gives a drone new lanes).
+  const server::MissionManager* mission = server.mission();
+  if (mission != nullptr && plan_missions_version_ != mission->missions_version()) {
+    plan_missions_version_ = mission->missions_version();
     model_.OnPlan(server::ToPlan(server, utime));
     plan_document_ = model_.Plan().dump();
     plan_documents_changed_ = true;
@@ -149,9 +154,11 @@ void WebFeed::Update(const server::Server& server, double now_s, std::int64_t ut
     model_.OnRadioStats(server::ToRadioStats(server, now_s, utime, kRadioWindowS, radio_counters_));
   }
   const std::chrono::steady_clock::time_point wall = std::chrono::steady_clock::now();
-  if (now_s + 1e-9 >= next_coverage_s_ && wall >= next_coverage_wall_) {
+  if (coverage_version_served_ != model_.coverage_version() && now_s + 1e-9 >= next_coverage_s_ &&
+      wall >= next_coverage_wall_) {
     next_coverage_s_ = now_s + kCoveragePeriodS;
     next_coverage_wall_ = wall + std::chrono::milliseconds(kCoveragePeriodMs);
+    coverage_version_served_ = model_.coverage_version();
     coverage_document_ = model_.Coverage().dump();
     plan_documents_changed_ = true;
   }
@@ -165,12 +172,6 @@ void WebFeed::Update(const server::Server& server, double now_s, std::int64_t ut
     (*delta)["built_unix_ms"] = built_unix_ms;
     web_.HoldSnapshots();  // the state document does not hold this delta yet
     web_.Broadcast(delta->dump());
-  }
-  if (web_.snapshot_wanted() || wall >= next_state_wall_) {
-    next_state_wall_ = wall + std::chrono::milliseconds(kStatePeriodMs);
-    nlohmann::json state = model_.State();
-    state["built_unix_ms"] = built_unix_ms;
-    web_.SetDocuments(state.dump(), plan_document_, coverage_document_);
   }
 }
 

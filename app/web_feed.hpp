@@ -3,20 +3,23 @@
 // no more often than 5 times a second of the wall clock (a run paced at K > 1 is
 // fed every K/5 simulated s), the server is converted into its LCM messages
 // (lcm_bridge.hpp's pure conversions), fed to the page's model
-// (server::CommandCenter), and the model's delta broadcast (the plan every 5 s as
-// LCM's plan_t, each command's status when it changed, the coverage raster every
-// second). The whole state is serialised for GET /api/state once a wall second,
-// and at once when a new WebSocket client waits for its snapshot: at 250 drones
-// the state is several times the delta's size (WebServer::HoldSnapshots). At every step the page's
-// commands are parsed (ParseWebCommand) and handed to Server::Handle at that time, the same entry
-// point as LCM's operator commands, and answered: 202 queued, 400 or 409 with why. Each delta and
-// state document carries `built_unix_ms`, the wall clock when it was built (the page measures its
-// state-to-screen latency with it).
+// (server::CommandCenter), and the model's delta broadcast (the plan as LCM's
+// plan_t when the missions changed, each command's status when it changed, the
+// coverage raster at most once a second when a cell was seen). The whole state
+// is serialised only when asked for: at the step after a new WebSocket client
+// waits for its snapshot or a GET /api/state for the state (at 250 drones the
+// state is several times the delta's size; WebServer::HoldSnapshots). At every
+// step the page's commands are parsed (ParseWebCommand) and handed to
+// Server::Handle at that time, the same entry point as LCM's operator commands,
+// and answered: 202 queued, 400 or 409 with why. Each delta and state document
+// carries `built_unix_ms`, the wall clock when it was built (the page measures
+// its state-to-screen latency with it).
 #pragma once
 
 #include <chrono>
 #include <cstdint>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 
 #include "fireswarm/common/time.hpp"
@@ -58,11 +61,11 @@ class WebFeed {
   server::RadioCounters radio_counters_;
   double next_update_s_ = 0.0;
   double next_radio_s_ = 0.0;
-  double next_plan_s_ = 0.0;
+  std::optional<std::uint64_t> plan_missions_version_;    // MissionManager's, last fed
+  std::optional<std::uint64_t> coverage_version_served_;  // the model's, in coverage_document_
   double next_coverage_s_ = 0.0;
   std::chrono::steady_clock::time_point next_update_wall_{};
   std::chrono::steady_clock::time_point next_coverage_wall_{};  // the coverage document
-  std::chrono::steady_clock::time_point next_state_wall_{};     // the state document
   bool plan_documents_changed_ = true;  // plan_document_ or coverage_document_ not served yet
   std::string coverage_document_ = "{}";
   std::string plan_document_;  // model_.Plan() serialised, redone when the plan is fed

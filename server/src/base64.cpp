@@ -1,31 +1,23 @@
 #include "base64.hpp"
 
+#include <openssl/evp.h>
+
+#include <algorithm>
+
 namespace fireswarm::server::internal {
 
 std::string Base64Encode(std::span<const std::uint8_t> bytes) {
-  static constexpr char kAlphabet[] =
-      "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string text;
-  text.reserve((bytes.size() + 2) / 3 * 4);
-  std::size_t i = 0;
-  // Three bytes make four 6-bit digits.
-  for (; i + 3 <= bytes.size(); i += 3) {
-    const std::uint32_t group = (std::uint32_t{bytes[i]} << 16) |
-                                (std::uint32_t{bytes[i + 1]} << 8) | std::uint32_t{bytes[i + 2]};
-    text += kAlphabet[(group >> 18) & 0x3F];
-    text += kAlphabet[(group >> 12) & 0x3F];
-    text += kAlphabet[(group >> 6) & 0x3F];
-    text += kAlphabet[group & 0x3F];
+  // OpenSSL's encoder takes an int length: whole 3-byte groups at a time.
+  constexpr std::size_t kChunk = std::size_t{3} << 20;
+  std::string text((bytes.size() + 2) / 3 * 4 + 1, '\0');  // + EVP_EncodeBlock's NUL
+  std::size_t written = 0;
+  for (std::size_t i = 0; i < bytes.size(); i += kChunk) {
+    const std::size_t n = std::min(kChunk, bytes.size() - i);
+    written += static_cast<std::size_t>(
+        EVP_EncodeBlock(reinterpret_cast<unsigned char*>(text.data() + written), bytes.data() + i,
+                        static_cast<int>(n)));
   }
-  const std::size_t rest = bytes.size() - i;
-  if (rest > 0) {
-    std::uint32_t group = std::uint32_t{bytes[i]} << 16;
-    if (rest == 2) group |= std::uint32_t{bytes[i + 1]} << 8;
-    text += kAlphabet[(group >> 18) & 0x3F];
-    text += kAlphabet[(group >> 12) & 0x3F];
-    text += rest == 2 ? kAlphabet[(group >> 6) & 0x3F] : '=';
-    text += '=';
-  }
+  text.resize(written);
   return text;
 }
 

@@ -1,5 +1,5 @@
-// Base64 (RFC 4648, with padding): the one encoder of the tree, for binary data
-// inside JSON (the command center's coverage bitset).
+// Base64 (RFC 4648, with padding) by OpenSSL's EVP_EncodeBlock: the one encoder
+// of the tree, for binary data inside JSON (the command center's coverage bitset).
 #pragma once
 
 #include <cstdint>

@@ -70,10 +70,13 @@ void CommandCenter::OnPlan(const plan_t& message) {
                           ": not a GeoJSON FeatureCollection";
     return;
   }
+  const internal::CoverageRaster* raster_before = coverage_.get();
   try {
     coverage_ = internal::CoverageRaster::FromPlan(plan, std::move(coverage_));
+    if (coverage_.get() != raster_before) ++coverage_version_;
   } catch (const std::invalid_argument& error) {
     coverage_.reset();
+    ++coverage_version_;
     plan_info_["error"] =
         std::string("plan of mission ") + std::to_string(message.mission_id) + ": " + error.what();
     plan_ = std::move(plan);
@@ -90,21 +93,24 @@ void CommandCenter::OnVehicleState(const vehicle_state_t& message) {
   const auto [it, inserted] = vehicles_.try_emplace(message.receiver_id);
   Vehicle& vehicle = it->second;
   internal::RaiseVehicleAlerts(inserted ? nullptr : &vehicle.last, message, *alerts_);
-  nlohmann::json row = internal::VehicleRow(message);
-  if (inserted || row != vehicle.row) {
-    vehicle.row = std::move(row);
-    vehicle.changed = true;
-  }
-  vehicle.last = message;
   std::optional<common::EastNorth> local;
   if (message.has_position && common::IsValidLatLon({message.lat_deg, message.lon_deg})) {
     const common::LatLon point{message.lat_deg, message.lon_deg};
     if (!frame_) frame_.emplace(point);
-    local = frame_->ToLocal(point);
+    // Most states repeat the position of the telemetry before.
+    const bool same = !inserted && vehicle.local && vehicle.last.lat_deg == point.lat_deg &&
+                      vehicle.last.lon_deg == point.lon_deg;
+    local = same ? vehicle.local : frame_->ToLocal(point);
   }
+  vehicle.last = message;
+  vehicle.local = local;
   ExtendTrail(vehicle, message, local);
   WatchSeparation(message, local);
-  if (coverage_) coverage_->Mark(message);
+  if (coverage_) {
+    const std::size_t seen_before = coverage_->seen_cells();
+    coverage_->Mark(message);
+    if (coverage_->seen_cells() != seen_before) ++coverage_version_;
+  }
 }
 
 void CommandCenter::ExtendTrail(Vehicle& vehicle, const vehicle_state_t& message,
@@ -119,7 +125,6 @@ void CommandCenter::ExtendTrail(Vehicle& vehicle, const vehicle_state_t& message
   vehicle.trail.push_back(nlohmann::json::array({message.lat_deg, message.lon_deg}));
   if (vehicle.trail.size() > config_.trail_points) vehicle.trail.pop_front();
   vehicle.trail_unsent = std::min(vehicle.trail_unsent + 1, vehicle.trail.size());
-  vehicle.changed = true;
 }
 
 void CommandCenter::WatchSeparation(const vehicle_state_t& message,
@@ -198,17 +203,31 @@ void CommandCenter::NoteRefused() {
   refused_changed_ = true;
 }
 
-nlohmann::json CommandCenter::VehicleJson(const Vehicle& vehicle, bool whole_trail) const {
-  nlohmann::json row = vehicle.row;
-  nlohmann::json& trail = row["trail"] = nlohmann::json::array();
-  const std::size_t first = whole_trail ? 0 : vehicle.trail.size() - vehicle.trail_unsent;
-  for (std::size_t i = first; i < vehicle.trail.size(); ++i) trail.push_back(vehicle.trail[i]);
+nlohmann::json CommandCenter::WholeRow(const Vehicle& vehicle) {
+  nlohmann::json row = internal::VehicleRow(internal::FieldsOf(vehicle.last));
+  row["trail"] = vehicle.trail;
+  return row;
+}
+
+std::optional<nlohmann::json> CommandCenter::RowChanges(const Vehicle& vehicle) {
+  const internal::VehicleFields now = internal::FieldsOf(vehicle.last);
+  std::optional<internal::VehicleFields> before;
+  if (vehicle.sent) before = internal::FieldsOf(*vehicle.sent);
+  if (before && *before == now && vehicle.trail_unsent == 0) return std::nullopt;
+  nlohmann::json row = internal::VehicleRow(now, before ? &*before : nullptr);
+  if (vehicle.trail_unsent > 0) {
+    nlohmann::json& trail = row["trail"] = nlohmann::json::array();
+    for (std::size_t i = vehicle.trail.size() - vehicle.trail_unsent; i < vehicle.trail.size();
+         ++i) {
+      trail.push_back(vehicle.trail[i]);
+    }
+  }
   return row;
 }
 
 nlohmann::json CommandCenter::State() const {
   nlohmann::json vehicles = nlohmann::json::array();
-  for (const auto& [id, vehicle] : vehicles_) vehicles.push_back(VehicleJson(vehicle, true));
+  for (const auto& [id, vehicle] : vehicles_) vehicles.push_back(WholeRow(vehicle));
   nlohmann::json tracks = nlohmann::json::array();
   for (const auto& [id, track] : tracks_) tracks.push_back(track.row);
   nlohmann::json commands = nlohmann::json::array();
@@ -235,9 +254,10 @@ std::optional<nlohmann::json> CommandCenter::TakeDelta() {
   if (std::exchange(mission_changed_, false)) delta["mission"] = mission_;
   nlohmann::json vehicles = nlohmann::json::array();
   for (auto& [id, vehicle] : vehicles_) {
-    if (!vehicle.changed) continue;
-    vehicles.push_back(VehicleJson(vehicle, false));
-    vehicle.changed = false;
+    std::optional<nlohmann::json> row = RowChanges(vehicle);
+    if (!row) continue;
+    vehicles.push_back(std::move(*row));
+    vehicle.sent = vehicle.last;
     vehicle.trail_unsent = 0;
   }
   if (!vehicles.empty()) delta["vehicles"] = std::move(vehicles);

@@ -104,14 +104,7 @@ nlohmann::json CoverageRaster::ToJson() const {
   const int rows = grid_.rows();
   const int cols = grid_.cols();
   const double cell_m = grid_.cell_m();
-  std::vector<std::uint8_t> bits(
-      (static_cast<std::size_t>(rows) * static_cast<std::size_t>(cols) + 7) / 8, 0);
-  std::size_t k = 0;
-  for (int r = 0; r < rows; ++r) {
-    for (int c = 0; c < cols; ++c, ++k) {
-      if (grid_.Seen(r, c)) bits[k / 8] |= static_cast<std::uint8_t>(1U << (k % 8));
-    }
-  }
+  const std::vector<std::uint8_t> bits = grid_.SeenBitset();
   const Eigen::Vector2d south_west = grid_.south_west_en_m();
   const double east_m[] = {south_west.x(), south_west.x() + cols * cell_m};
   const double north_m[] = {south_west.y(), south_west.y() + rows * cell_m};

@@ -45,6 +45,7 @@ class CoverageRaster {
   /// is bit (k mod 8) of byte k / 8, k = r * cols + c, least significant bit first.
   nlohmann::json ToJson() const;
 
+  std::size_t seen_cells() const { return grid_.seen_cells(); }
   int rows() const { return grid_.rows(); }
   int cols() const { return grid_.cols(); }
 

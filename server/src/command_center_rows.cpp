@@ -83,18 +83,48 @@ std::string_view TaskName(int task) {
   return NameOf(kNames, task);
 }
 
-std::string TaskText(const vehicle_state_t& m) {
-  switch (m.task) {
+VehicleFields FieldsOf(const vehicle_state_t& m) {
+  const bool heard = m.telemetry_age_s >= 0.0;
+  const auto finite = [](double value) -> std::optional<double> {
+    if (!std::isfinite(value)) return std::nullopt;
+    return value;
+  };
+  const auto telemetry = [&](double value) { return heard ? finite(value) : std::nullopt; };
+  VehicleFields f;
+  f.id = m.receiver_id;
+  if (heard) f.mode = m.flight_mode;
+  if (m.has_position && std::isfinite(m.lat_deg) && std::isfinite(m.lon_deg)) {
+    f.lat_deg = m.lat_deg;
+    f.lon_deg = m.lon_deg;
+  }
+  f.altitude_m = telemetry(m.altitude_m);
+  f.speed_mps = telemetry(std::hypot(m.velocity_north_mps, m.velocity_east_mps));
+  f.heading_deg = telemetry(m.heading_deg);
+  f.battery_percent = telemetry(m.battery_percent);
+  f.link = m.link_state;
+  // Rounded: utime and the age are two numbers whose difference is one instant.
+  f.heard_s = telemetry(std::round((UtimeToSeconds(m.utime) - m.telemetry_age_s) * 1e3) / 1e3);
+  f.telemetry_hz = finite(m.telemetry_hz);
+  f.progress = finite(m.progress_fraction);
+  f.task = m.task;
+  f.lane_index = m.lane_index;
+  f.lane_count = m.lane_count;
+  f.track_id = m.task_track_id;
+  return f;
+}
+
+std::string TaskText(const VehicleFields& f) {
+  switch (f.task) {
     case vehicle_state_t::TASK_IDLE:
       return "idle";
     case vehicle_state_t::TASK_UPLOADING:
       return "receiving its mission";
     case vehicle_state_t::TASK_LANE:
-      if (m.lane_index <= 0) return "searching";
-      if (m.lane_count <= 0) return "lane " + std::to_string(m.lane_index);
-      return "lane " + std::to_string(m.lane_index) + " of " + std::to_string(m.lane_count);
+      if (f.lane_index <= 0) return "searching";
+      if (f.lane_count <= 0) return "lane " + std::to_string(f.lane_index);
+      return "lane " + std::to_string(f.lane_index) + " of " + std::to_string(f.lane_count);
     case vehicle_state_t::TASK_INVESTIGATING:
-      if (m.task_track_id > 0) return "investigating fire " + std::to_string(m.task_track_id);
+      if (f.track_id > 0) return "investigating fire " + std::to_string(f.track_id);
       return "investigating a point";
     case vehicle_state_t::TASK_RETURNING:
       return "returning";
@@ -107,30 +137,43 @@ std::string TaskText(const vehicle_state_t& m) {
     case vehicle_state_t::TASK_HOLDING:
       return "holding";
     default:
-      return "unknown task " + std::to_string(m.task);
+      return "unknown task " + std::to_string(f.task);
   }
 }
 
-nlohmann::json VehicleRow(const vehicle_state_t& m) {
-  const bool heard = m.telemetry_age_s >= 0.0;
-  const auto telemetry = [heard](double value) { return heard ? Number(value) : nullptr; };
-  nlohmann::json row = {
-      {"id", m.receiver_id},
-      {"colour", VehicleColour(m.receiver_id)},
-      {"mode", heard ? nlohmann::json(ModeName(m.flight_mode)) : nlohmann::json(nullptr)},
-      {"position", LatLonOrNull(m.has_position, m.lat_deg, m.lon_deg)},
-      {"altitude_m", telemetry(m.altitude_m)},
-      {"speed_mps", telemetry(std::hypot(m.velocity_north_mps, m.velocity_east_mps))},
-      {"heading_deg", telemetry(m.heading_deg)},
-      {"battery_percent", telemetry(m.battery_percent)},
-      {"link", LinkName(m.link_state)},
-      {"heard_s_ago", telemetry(m.telemetry_age_s)},
-      {"telemetry_hz", Number(m.telemetry_hz)},
-      {"progress", Number(m.progress_fraction)},
-      {"task", TaskName(m.task)},
-      {"task_text", TaskText(m)},
-      {"track_id", m.task_track_id},
+nlohmann::json VehicleRow(const VehicleFields& f, const VehicleFields* before) {
+  const auto number = [](const std::optional<double>& value) {
+    return value ? nlohmann::json(*value) : nlohmann::json(nullptr);
   };
+  // Whether member `field` goes in: always in a whole row, else when it changed.
+  const auto differs = [before, &f](auto VehicleFields::*field) {
+    return before == nullptr || f.*field != before->*field;
+  };
+  nlohmann::json row = {{"id", f.id}};
+  if (before == nullptr) row["colour"] = VehicleColour(f.id);
+  if (differs(&VehicleFields::mode)) {
+    row["mode"] = f.mode ? nlohmann::json(ModeName(*f.mode)) : nlohmann::json(nullptr);
+  }
+  if (differs(&VehicleFields::lat_deg) || differs(&VehicleFields::lon_deg)) {
+    row["position"] = f.lat_deg && f.lon_deg ? nlohmann::json::array({*f.lat_deg, *f.lon_deg})
+                                             : nlohmann::json(nullptr);
+  }
+  for (const auto& [key, field] : {std::pair{"altitude_m", &VehicleFields::altitude_m},
+                                   std::pair{"speed_mps", &VehicleFields::speed_mps},
+                                   std::pair{"heading_deg", &VehicleFields::heading_deg},
+                                   std::pair{"battery_percent", &VehicleFields::battery_percent},
+                                   std::pair{"heard_s", &VehicleFields::heard_s},
+                                   std::pair{"telemetry_hz", &VehicleFields::telemetry_hz},
+                                   std::pair{"progress", &VehicleFields::progress}}) {
+    if (differs(field)) row[key] = number(f.*field);
+  }
+  if (differs(&VehicleFields::link)) row["link"] = LinkName(f.link);
+  if (differs(&VehicleFields::task) || differs(&VehicleFields::lane_index) ||
+      differs(&VehicleFields::lane_count) || differs(&VehicleFields::track_id)) {
+    row["task"] = TaskName(f.task);
+    row["task_text"] = TaskText(f);
+    row["track_id"] = f.track_id;
+  }
   return row;
 }
 

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -31,16 +32,44 @@ std::string_view VehicleColour(int receiver_id);
 std::string_view ModeName(int flight_mode);
 std::string_view LinkName(int link_state);
 std::string_view TaskName(int task);
+
+/// What a vehicle's row says (docs/command_center.md "The state"), compared
+/// before its JSON is built: states come at the web rate (5 Hz), telemetry at
+/// 1-2 Hz, so most states change nothing. A number that is not finite, or a
+/// telemetry field before the first telemetry, is nullopt (null in the JSON).
+struct VehicleFields {
+  int id = 0;
+  std::optional<int> mode;  ///< nullopt before the first telemetry
+  std::optional<double> lat_deg;
+  std::optional<double> lon_deg;  ///< both or neither
+  std::optional<double> altitude_m;
+  std::optional<double> speed_mps;  ///< horizontal, from the velocity
+  std::optional<double> heading_deg;
+  std::optional<double> battery_percent;
+  int link = 0;
+  /// When the latest telemetry came, s of the publisher's clock (utime - telemetry
+  /// age), to the millisecond: the page shows its age against the state's time_s.
+  std::optional<double> heard_s;
+  std::optional<double> telemetry_hz;
+  std::optional<double> progress;
+  int task = 0;
+  int lane_index = 0;
+  int lane_count = 0;
+  int track_id = 0;
+  bool operator==(const VehicleFields&) const = default;
+};
+VehicleFields FieldsOf(const vehicle_state_t& message);
+
 /// What the vehicle is doing, for a human: "lane 4 of 12", "investigating fire 2",
 /// "investigating a point", "returning", ...
-std::string TaskText(const vehicle_state_t& message);
+std::string TaskText(const VehicleFields& fields);
 
 /// The vehicle's row without "trail": id, colour, mode, position ([lat, lon] or
-/// null without a fix), altitude_m, speed_mps (horizontal, from the velocity),
-/// heading_deg, battery_percent, link, heard_s_ago, telemetry_hz, progress, task,
-/// task_text, track_id. Before the first telemetry (telemetry_age_s < 0) the
-/// telemetry fields are null.
-nlohmann::json VehicleRow(const vehicle_state_t& message);
+/// null without a fix), altitude_m, speed_mps, heading_deg, battery_percent,
+/// link, heard_s, telemetry_hz, progress, task, task_text, track_id. With
+/// `before` (the row a client has), only id and the fields that differ from it
+/// (task, task_text and track_id go together).
+nlohmann::json VehicleRow(const VehicleFields& fields, const VehicleFields* before = nullptr);
 
 /// The 2-sigma ellipse of a north/east covariance (fire_track_t.covariance_m2,
 /// index 0 = north, 1 = east), m^2: {"semi_major_m", "semi_minor_m",

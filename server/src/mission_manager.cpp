@@ -116,6 +116,7 @@ void MissionManager::Replace(DroneMission mission, bool send) {
   // Answers to the old mission's requests are no longer this drone's business.
   std::erase_if(pending_, [&](const auto& entry) { return entry.second.vehicle == vehicle; });
   drone = DroneFor(std::move(mission));
+  ++missions_version_;
   if (!send) return;
   for (std::size_t i = 0; i < drone.chunks.size(); ++i) SendChunk(drone, i);
 }

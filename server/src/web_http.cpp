@@ -90,24 +90,46 @@ class HttpSession : public std::enable_shared_from_this<HttpSession<Stream>> {
       return Write(ErrorReply(request, http::status::not_found, "the WebSocket is at /ws"));
     }
     if (path == "/api/command") return Command(std::move(request));
+    if (path == "/api/state" &&
+        (request.method() == http::verb::get || request.method() == http::verb::head)) {
+      return State(std::move(request));
+    }
     Write(Route(*hub_, request));
   }
 
-  void Command(Request request) {
-    const auto executor = stream_.get_executor();
-    std::weak_ptr<HttpSession> weak = this->shared_from_this();
-    // The caller's answer, from its thread: posted here. The responder holds the
-    // session alive until then.
-    Responder responder = [self = this->shared_from_this(), executor, request](int status,
-                                                                               std::string body) {
+  // An answer from the caller's thread, posted here. It holds the session alive
+  // until then.
+  Responder AnswerLater(const Request& request) {
+    return [self = this->shared_from_this(), executor = stream_.get_executor(), request](
+               int status, std::string body) {
       asio::post(executor, [self, request, status, body = std::move(body)]() mutable {
         self->answer_timer_.cancel();
         self->Write(
             Reply(request, static_cast<http::status>(status), std::move(body), "application/json"));
       });
     };
+  }
+
+  // The state document, fresh: while the feed's deltas are ahead of it, the
+  // answer waits for the feed's next state (Hub::WaitForState).
+  void State(Request request) {
+    const std::uint64_t id = hub_->WaitForState(AnswerLater(request));
+    if (id == 0) return;
+    std::weak_ptr<HttpSession> weak = this->shared_from_this();
+    answer_timer_.expires_after(hub_->config().answer_timeout);
+    answer_timer_.async_wait([weak, id, request = std::move(request)](beast::error_code error) {
+      auto self = weak.lock();
+      if (error || !self || !self->hub_->Expire(id)) return;
+      self->Write(ErrorReply(request, http::status::service_unavailable,
+                             "the server made no new state in time"));
+    });
+  }
+
+  void Command(Request request) {
+    std::weak_ptr<HttpSession> weak = this->shared_from_this();
     std::uint64_t id = 0;
-    std::optional<Response> refused = AdmitCommand(*hub_, request, peer_, responder, &id);
+    std::optional<Response> refused =
+        AdmitCommand(*hub_, request, peer_, AnswerLater(request), &id);
     if (refused) return Write(std::move(*refused));
     answer_timer_.expires_after(hub_->config().answer_timeout);
     answer_timer_.async_wait([weak, id, request = std::move(request)](beast::error_code error) {

@@ -7,6 +7,8 @@
 namespace fireswarm::server::web {
 namespace {
 
+constexpr int kOk = 200;
+
 Text EmptyObject() {
   return std::make_shared<const std::string>("{}");
 }
@@ -42,22 +44,34 @@ Documents Hub::documents() const {
 
 void Hub::SetDocuments(Text state, Text plan, Text coverage) {
   std::vector<std::shared_ptr<WsClient>> released;
+  std::vector<Responder> requests;  // GET /api/state waiting for this state
   Text snapshot;
   {
     const std::lock_guard lock(mutex_);
     documents_ = {std::move(state), std::move(plan), std::move(coverage)};
     snapshots_held_ = false;
-    if (waiting_.empty()) return;
-    snapshot = SnapshotMessage(documents_.state);
-    for (auto& [id, client] : waiting_) {
-      if (auto locked = client.lock()) released.push_back(std::move(locked));
-      clients_.emplace(id, std::move(client));
+    snapshot_wanted_.store(false, std::memory_order_release);
+    for (const std::uint64_t id : state_requests_) {
+      const auto open = open_.find(id);
+      if (open == open_.end()) continue;  // expired
+      requests.push_back(std::move(open->second));
+      open_.erase(open);
     }
-    waiting_.clear();
+    state_requests_.clear();
+    if (!waiting_.empty()) {
+      snapshot = SnapshotMessage(documents_.state);
+      for (auto& [id, client] : waiting_) {
+        if (auto locked = client.lock()) released.push_back(std::move(locked));
+        clients_.emplace(id, std::move(client));
+      }
+      waiting_.clear();
+    }
+    state = documents_.state;
   }
   // Sent after the lock. SetDocuments and Broadcast come from one thread (the
   // feed's), so no broadcast overtakes the snapshot on a client's queue.
   for (const auto& client : released) client->Send(snapshot);
+  for (const Responder& request : requests) request(kOk, *state);
 }
 
 void Hub::SetPlanDocuments(Text plan, Text coverage) {
@@ -72,8 +86,24 @@ void Hub::HoldSnapshots() {
 }
 
 bool Hub::snapshot_wanted() const {
-  const std::lock_guard lock(mutex_);
-  return !waiting_.empty();
+  return snapshot_wanted_.load(std::memory_order_acquire);
+}
+
+std::uint64_t Hub::WaitForState(Responder responder) {
+  Text state;
+  {
+    const std::lock_guard lock(mutex_);
+    if (snapshots_held_) {
+      const std::uint64_t id = next_id_++;
+      open_.emplace(id, std::move(responder));
+      state_requests_.push_back(id);
+      snapshot_wanted_.store(true, std::memory_order_release);
+      return id;
+    }
+    state = documents_.state;
+  }
+  responder(kOk, *state);
+  return 0;
 }
 
 std::uint64_t Hub::QueueCommand(nlohmann::json body, std::string peer, Responder responder) {
@@ -132,6 +162,7 @@ std::uint64_t Hub::AddClient(std::weak_ptr<WsClient> client, Text* snapshot) {
   const std::uint64_t id = next_id_++;
   if (snapshots_held_) {
     waiting_.emplace(id, std::move(client));
+    snapshot_wanted_.store(true, std::memory_order_release);
     *snapshot = nullptr;
   } else {
     clients_.emplace(id, std::move(client));
@@ -199,6 +230,7 @@ void Hub::DropAll() {
     open.swap(open_);
     clients.swap(clients_);
     waiting_.clear();
+    state_requests_.clear();
     commands_.clear();
   }
 }

@@ -54,8 +54,13 @@ class Hub {
   /// The state document no longer holds everything broadcast: clients that connect
   /// from now on wait for the next SetDocuments for their snapshot.
   void HoldSnapshots();
-  /// True while a client waits for its snapshot.
+  /// True while a client waits for its snapshot or a GET /api/state for the
+  /// state (no lock: the feed looks at every step).
   bool snapshot_wanted() const;
+  /// GET /api/state: `responder` gets (200, the state document) now unless
+  /// snapshots are held, else at the next SetDocuments. Returns 0 when answered
+  /// now, else the request's ID for Expire.
+  std::uint64_t WaitForState(Responder responder);
 
   /// Queues a command for the caller; `responder` is called once by Answer().
   std::uint64_t QueueCommand(nlohmann::json body, std::string peer, Responder responder);
@@ -95,7 +100,9 @@ class Hub {
   std::map<std::uint64_t, Responder> open_;  // not answered yet
   std::map<std::uint64_t, std::weak_ptr<WsClient>> clients_;
   std::map<std::uint64_t, std::weak_ptr<WsClient>> waiting_;  // for their snapshot
+  std::vector<std::uint64_t> state_requests_;  // GET /api/state in open_, for the next state
   bool snapshots_held_ = false;
+  std::atomic<bool> snapshot_wanted_{false};  // !waiting_.empty() || !state_requests_.empty()
   std::deque<ClientMessage> client_messages_;
   std::atomic<std::uint64_t> refused_{0};
   // Set (under mutex_) when one is queued, cleared when all are taken: a look

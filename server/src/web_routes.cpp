@@ -165,8 +165,8 @@ Response Route(const Hub& hub, const Request& request) {
   }
   if (path->starts_with("/api/")) {
     const Documents documents = hub.documents();
-    const Text* document = *path == "/api/state"      ? &documents.state
-                           : *path == "/api/plan"     ? &documents.plan
+    // GET /api/state is the session's (it may wait for a fresh state).
+    const Text* document = *path == "/api/plan"       ? &documents.plan
                            : *path == "/api/coverage" ? &documents.coverage
                                                       : nullptr;
     if (document == nullptr) return ErrorReply(request, http::status::not_found, "no such API");

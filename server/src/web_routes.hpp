@@ -38,7 +38,8 @@ std::optional<std::filesystem::path> FileUnder(const std::filesystem::path& root
 /// The MIME type for a file name's extension (application/octet-stream otherwise).
 std::string_view MimeType(const std::filesystem::path& file);
 
-/// Everything but POST /api/command: files, documents, tiles, 404/405.
+/// Everything but POST /api/command and GET /api/state (the session's: they wait
+/// for the caller): files, the plan and coverage documents, tiles, 404/405.
 Response Route(const Hub& hub, const Request& request);
 
 /// POST /api/command: refuses it (401, 403, 400) or queues it for the caller,

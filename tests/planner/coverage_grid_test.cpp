@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <vector>
 
 #include "planner/planner_test_helpers.hpp"
 
@@ -41,6 +42,29 @@ TEST(CoverageGrid, NadirFootprintMarksTheCellsUnderIt) {
     EXPECT_EQ(grid.seen_cells(), 24U) << heading_rad;
     EXPECT_DOUBLE_EQ(grid.Fraction(), 24.0 / 400.0);
   }
+}
+
+// The bitset the command center sends: bit k = row * cols + col is Seen(row, col).
+TEST(CoverageGrid, SeenBitsetHoldsEveryCellRowByRowFromTheSouthWest) {
+  // 21 x 12 cells (not a whole number of bytes), a no-fly zone in the footprint.
+  CoverageGrid grid({Rect(0, 0, 105, 60)}, {Rect(45, 25, 55, 35)});
+  grid.Mark({50.0, 30.0}, kNorth, 20.0, Seed(), -90.0);
+  grid.Mark({100.0, 55.0}, kNorth, 20.0, Seed(), -90.0);  // the last cells
+  ASSERT_TRUE(grid.Seen(grid.rows() - 1, grid.cols() - 1));
+  const std::vector<std::uint8_t> bits = grid.SeenBitset();
+  const auto cells = static_cast<std::size_t>(grid.rows() * grid.cols());
+  ASSERT_EQ(bits.size(), (cells + 7) / 8);
+  std::size_t set = 0;
+  for (int r = 0; r < grid.rows(); ++r) {
+    for (int c = 0; c < grid.cols(); ++c) {
+      const auto k = static_cast<std::size_t>(r * grid.cols() + c);
+      const bool bit = ((bits[k / 8] >> (k % 8)) & 1U) != 0;
+      EXPECT_EQ(bit, grid.Seen(r, c)) << r << ", " << c;
+      set += bit ? 1 : 0;
+    }
+  }
+  EXPECT_EQ(set, grid.seen_cells());
+  EXPECT_GT(set, 0U);
 }
 
 TEST(CoverageGrid, ACellSeenTwiceCountsOnce) {

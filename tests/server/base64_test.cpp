@@ -29,5 +29,14 @@ TEST(Base64Encode, EveryByteValue) {
   EXPECT_EQ(Base64Encode(bytes), "AP/+Aw==");
 }
 
+// Longer than one call of OpenSSL's encoder (3 MiB): the chunks join seamlessly.
+TEST(Base64Encode, BeyondOneChunk) {
+  const std::vector<std::uint8_t> zeros((std::size_t{3} << 20) + 1, 0);
+  const std::string text = Base64Encode(zeros);
+  ASSERT_EQ(text.size(), (std::size_t{4} << 20) + 4);
+  EXPECT_EQ(text.find_first_not_of('A'), text.size() - 2);
+  EXPECT_EQ(text.substr(text.size() - 4), "AA==");
+}
+
 }  // namespace
 }  // namespace fireswarm::server::internal

@@ -25,6 +25,79 @@ TEST(CommandCenterDelta, NothingChangedGivesNoDelta) {
   EXPECT_FALSE(center.TakeDelta());
 }
 
+// States go out at the web rate, telemetry comes at 1-2 Hz: a state that only
+// repeats the telemetry before, older, changes no row (the page ages heard_s
+// against time_s itself); the next telemetry does.
+TEST(CommandCenterDelta, ARepeatedTelemetrySampleChangesNoRow) {
+  CommandCenter center({});
+  vehicle_state_t m = Flying(1, {0.0, 0.0}, 50.0, 1'000'000);
+  center.OnVehicleState(m);
+  ASSERT_TRUE(center.TakeDelta());
+  m.utime += 200'000;
+  m.telemetry_age_s += 0.2;
+  center.OnVehicleState(m);
+  const std::optional<nlohmann::json> later = center.TakeDelta();
+  ASSERT_TRUE(later) << "the time moved on";
+  EXPECT_DOUBLE_EQ((*later)["time_s"].get<double>(), 1.2);
+  EXPECT_FALSE(later->contains("vehicles"));
+  EXPECT_DOUBLE_EQ(center.State()["vehicles"][0]["heard_s"].get<double>(), 0.8);
+
+  m.utime += 300'000;
+  m.telemetry_age_s = 0.1;  // a new sample, heard at 1.4 s
+  center.OnVehicleState(m);
+  const std::optional<nlohmann::json> heard = center.TakeDelta();
+  ASSERT_TRUE(heard);
+  ASSERT_EQ((*heard)["vehicles"].size(), 1U);
+  EXPECT_DOUBLE_EQ((*heard)["vehicles"][0]["heard_s"].get<double>(), 1.4);
+}
+
+// A row in a delta carries the fields that changed since the last delta's row,
+// which the page merges into the row it has: applied to the state before, the
+// delta gives the state after.
+TEST(CommandCenterDelta, ARowCarriesOnlyItsChangedFieldsAndMergesIntoTheWholeRow) {
+  CommandCenter center({});
+  vehicle_state_t m = Flying(4, {0.0, 0.0}, 50.0, 1'000'000);
+  center.OnVehicleState(m);
+  const std::optional<nlohmann::json> first = center.TakeDelta();
+  ASSERT_TRUE(first);
+  nlohmann::json row = center.State()["vehicles"][0];
+  EXPECT_EQ((*first)["vehicles"][0], row) << "a new vehicle's row is whole";
+
+  m.utime = 2'000'000;
+  m.vehicle_time_ms = 2'000;
+  m.battery_percent = 79.0;  // and a new heard_s
+  center.OnVehicleState(m);
+  std::optional<nlohmann::json> delta = center.TakeDelta();
+  ASSERT_TRUE(delta);
+  nlohmann::json changed = (*delta)["vehicles"][0];
+  EXPECT_EQ(changed, nlohmann::json({{"id", 4}, {"battery_percent", 79.0}, {"heard_s", 1.8}}));
+  row.merge_patch(changed);
+  EXPECT_EQ(row, center.State()["vehicles"][0]);
+
+  // Task fields go together; a move brings the position and its trail point.
+  m.utime = 3'000'000;
+  m.telemetry_age_s = 1.2;  // no new telemetry: heard_s stays
+  m.lane_index = 2;
+  m.lat_deg += 0.001;
+  center.OnVehicleState(m);
+  delta = center.TakeDelta();
+  ASSERT_TRUE(delta);
+  changed = (*delta)["vehicles"][0];
+  EXPECT_EQ(changed["task_text"], "lane 2 of 3");
+  EXPECT_EQ(changed["task"], "lane");
+  EXPECT_TRUE(changed.contains("track_id"));
+  EXPECT_EQ(changed["trail"].size(), 1U);
+  EXPECT_FALSE(changed.contains("heard_s"));
+  EXPECT_FALSE(changed.contains("battery_percent"));
+  changed.erase("trail");
+  row.merge_patch(changed);
+  nlohmann::json after = center.State()["vehicles"][0];
+  EXPECT_EQ(after["trail"].size(), 2U);
+  after.erase("trail");
+  row.erase("trail");
+  EXPECT_EQ(row, after);
+}
+
 TEST(CommandCenterDelta, CarriesOnlyTheChangedRowsAndTheNewTrailPoints) {
   CommandCenter center({});
   center.OnVehicleState(Flying(1, {0.0, 0.0}, 50.0, 1'000'000));

@@ -124,21 +124,27 @@ TEST(CommandCenterPlan, ADroneOverTheAreaMarksTheCellsItsCameraSees) {
   };
   vehicle_state_t drone = test::Flying(1, {100.0, 50.0}, 60.0, 1'000'000);
   drone.has_position = false;
+  const std::uint64_t version_of_plan = center.coverage_version();
   center.OnVehicleState(drone);
   EXPECT_EQ(seen_bits(), 0U);
+  EXPECT_EQ(center.coverage_version(), version_of_plan) << "nothing seen: the raster is the same";
   drone.has_position = true;
   center.OnVehicleState(drone);
   const std::size_t first = seen_bits();
   EXPECT_GT(first, 0U);
+  const std::uint64_t version_of_first = center.coverage_version();
+  EXPECT_NE(version_of_first, version_of_plan);
   // The same telemetry sample published again (states go at 5 Hz, telemetry at
   // 1-2 Hz) is not marked again, even were its position another.
   vehicle_state_t again = test::Flying(1, {150.0, 50.0}, 60.0, 1'200'000);
   again.vehicle_time_ms = drone.vehicle_time_ms;
   center.OnVehicleState(again);
   EXPECT_EQ(seen_bits(), first);
+  EXPECT_EQ(center.coverage_version(), version_of_first);
   again.vehicle_time_ms += 1000;  // a new sample there
   center.OnVehicleState(again);
   EXPECT_GT(seen_bits(), first);
+  EXPECT_NE(center.coverage_version(), version_of_first);
 }
 
 // The plan changes with the lanes (a handover, an investigation): the cells seen
@@ -153,12 +159,15 @@ TEST(CommandCenterPlan, NewLanesKeepTheCoverageANewAreaStartsAfresh) {
   ASSERT_NE(seen.find_first_not_of("A="), std::string::npos) << "some cell seen";
   plan["features"][1]["geometry"]["coordinates"][1] =
       plan["features"][1]["geometry"]["coordinates"][0];
+  const std::uint64_t version_before_lanes = center.coverage_version();
   center.OnPlan(PlanMessage(plan.dump(), 6'000'000));
   EXPECT_EQ(center.State()["plan"]["version"], 2) << "the plan did change";
   EXPECT_EQ(center.Coverage()["seen"].get<std::string>(), seen);
+  EXPECT_EQ(center.coverage_version(), version_before_lanes) << "the raster did not";
   plan["features"][0]["geometry"]["coordinates"][0][2][0] =
       plan["features"][0]["geometry"]["coordinates"][0][2][0].get<double>() + 0.001;
   center.OnPlan(PlanMessage(plan.dump(), 11'000'000));
+  EXPECT_NE(center.coverage_version(), version_before_lanes);
   EXPECT_EQ(center.Coverage()["seen"].get<std::string>().find_first_not_of("A="), std::string::npos)
       << "nothing seen yet over the new area";
 }

@@ -309,6 +309,7 @@ TEST(Server, ALostDronesLanesGoToTheOthersAsNewMissions) {
   StartLaneMission(air, server);
   ASSERT_EQ(server.state(), MissionState::kRunning);
 
+  const std::uint64_t missions_version = server.mission()->missions_version();
   // Vehicle 2 is gone: after the registry's lost time its two lanes are flown by 1 and 3.
   air.silent.insert(2);
   const Nanos gone_at = air.channel().now();
@@ -323,6 +324,8 @@ TEST(Server, ALostDronesLanesGoToTheOthersAsNewMissions) {
   EXPECT_GE(common::ToSeconds(air.channel().now() - gone_at), lost_after_s);
   ASSERT_EQ(server.mission()->progress(2).phase, DronePhase::kFailed);
   EXPECT_NE(server.mission()->progress(2).failure.find("lost"), std::string::npos);
+  EXPECT_EQ(server.mission()->missions_version(), missions_version + 2)
+      << "two missions replaced: the plan's lanes changed";
   // Each of the others stores and started its new mission: its own lanes, then one of 2's.
   std::set<std::uint16_t> ids;
   int lanes_given = 0;

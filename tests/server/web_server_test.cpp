@@ -234,6 +234,44 @@ TEST_F(WebServerTest, HeldSnapshotsWaitForTheNextStateWithoutTheDeltasBefore) {
   EXPECT_EQ(Get(server.port(), "/api/state").body(), R"({"time_s":2.4})");
 }
 
+// The feed serialises the state only when asked: a GET /api/state while the
+// deltas are ahead of the state document waits for the next one, never gets the
+// stale one, and gets 503 if none comes in time.
+TEST_F(WebServerTest, AStateRequestWhileSnapshotsAreHeldGetsTheNextState) {
+  WebServerConfig config = Config();
+  config.answer_timeout = 300ms;
+  WebServer server(config);
+  server.SetDocuments(R"({"time_s":1})", "{}", "{}");
+  EXPECT_EQ(Get(server.port(), "/api/state").body(), R"({"time_s":1})") << "not held: at once";
+  EXPECT_FALSE(server.snapshot_wanted());
+
+  server.HoldSnapshots();
+  std::future<testing::Response> answer =
+      std::async(std::launch::async, [&] { return Get(server.port(), "/api/state"); });
+  const auto deadline = std::chrono::steady_clock::now() + kWait;
+  while (!server.snapshot_wanted() && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::yield();  // the io thread registers the request
+  }
+  ASSERT_TRUE(server.snapshot_wanted());
+  server.SetDocuments(R"({"time_s":2})", "{}", "{}");
+  EXPECT_FALSE(server.snapshot_wanted());
+  const testing::Response fresh = answer.get();
+  EXPECT_EQ(fresh.result(), http::status::ok);
+  EXPECT_EQ(fresh.body(), R"({"time_s":2})");
+  EXPECT_EQ(fresh[http::field::content_type], "application/json");
+
+  // Held, and no state comes: 503 after answer_timeout; a later state is no harm.
+  server.HoldSnapshots();
+  const testing::Response late = Get(server.port(), "/api/state");
+  EXPECT_EQ(late.result(), http::status::service_unavailable);
+  EXPECT_NE(BodyOf(late).at("error").get<std::string>().find("no new state"), std::string::npos);
+  server.SetDocuments(R"({"time_s":3})", "{}", "{}");
+  const testing::Response head =
+      Fetch(server.port(), MakeRequest(http::verb::head, "/api/state", "", {}));
+  EXPECT_EQ(head.result(), http::status::ok);
+  EXPECT_EQ(head[http::field::content_length], std::to_string(std::string(R"({"time_s":3})").size()));
+}
+
 TEST_F(WebServerTest, AMalformedClientMessageGetsAnErrorAndTheServerServesOn) {
   WebServerConfig config = Config();
   config.max_client_message_bytes = 256;

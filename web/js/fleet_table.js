@@ -14,12 +14,14 @@ function sortValue(vehicle, key) {
   return value === null || value === undefined ? -Infinity : value;
 }
 
-function linkText(vehicle) {
-  const ago = Number.isFinite(vehicle.heard_s_ago) ? ` ${vehicle.heard_s_ago.toFixed(1)} s` : '';
+/** The link and the seconds since the last telemetry, at the state's time. */
+function linkText(vehicle, timeS) {
+  const heard = Number.isFinite(vehicle.heard_s) && Number.isFinite(timeS);
+  const ago = heard ? ` ${Math.max(0, timeS - vehicle.heard_s).toFixed(1)} s` : '';
   return `${vehicle.link || '–'}${vehicle.link === 'never' ? '' : ago}`;
 }
 
-/** The text of each column after the first (the ID cell has a swatch). */
+/** The text of each column after the first (the ID cell has a swatch): (vehicle, time_s). */
 const COLUMNS = [
   (v) => v.mode || '–',
   (v) => fixed(v.battery_percent, 0),
@@ -81,7 +83,7 @@ export class FleetTable {
       seen.add(vehicle.id);
       let row = this.rows_.get(vehicle.id);
       if (!row) row = this.addRow_(vehicle);
-      this.updateRow_(row, vehicle);
+      this.updateRow_(row, vehicle, store.timeS);
     }
     for (const [id, row] of this.rows_) {
       if (!seen.has(id)) {
@@ -108,9 +110,9 @@ export class FleetTable {
     return row;
   }
 
-  updateRow_(row, vehicle) {
+  updateRow_(row, vehicle, timeS) {
     COLUMNS.forEach((column, i) => {
-      const text = column(vehicle);
+      const text = column(vehicle, timeS);
       if (row.texts[i] !== text) {
         row.texts[i] = text;
         row.cells[i].textContent = text;

@@ -15,7 +15,8 @@ export function vehicle(id, battery, link = 'ok') {
   return {
     id, colour: ['#1f77b4', '#ff7f0e', '#2ca02c', '#d62728'][id - 1], mode: 'search',
     position: [46.30 + id * 0.001, -74.50], altitude_m: 60, speed_mps: 10, heading_deg: 90 * id,
-    battery_percent: battery, link, heard_s_ago: link === 'lost' ? 14.2 : 0.4, telemetry_hz: 1,
+    battery_percent: battery, link, heard_s: link === 'lost' ? 35.8 : 49.6, // 14.2 s, 0.4 s before time_s 50
+    telemetry_hz: 1,
     progress: 0.1 * id, task: 'lane', task_text: `lane ${id} of 12`, track_id: 0, trail: [],
   };
 }

@@ -33,7 +33,10 @@ test('re-sorting and a lost link keep the selected drone the command\'s target',
   await page.locator('#fleet th[data-key="link"]').click();
   stream.send(JSON.stringify({ type: 'delta', time_s: 65, vehicles: [vehicle(1, 59, 'lost')] }));
   await expect(page.locator('#fleet tr[data-vehicle="1"]')).toHaveClass(/lost/);
-  await expect(page.locator('#fleet tr[data-vehicle="1"]')).toContainText('lost 14.2 s');
+  // Heard last at 35.8 s: its age counts on with the state's time, no row sent.
+  await expect(page.locator('#fleet tr[data-vehicle="1"]')).toContainText('lost 29.2 s');
+  stream.send(JSON.stringify({ type: 'delta', time_s: 70 }));
+  await expect(page.locator('#fleet tr[data-vehicle="1"]')).toContainText('lost 34.2 s');
   await expect.poll(() => rowIds(page)).toEqual([2, 3, 4, 1]);
   await expect(page.locator('#fleet tr.selected')).toHaveAttribute('data-vehicle', '2');
   await expect(page.locator('.drone[data-vehicle="1"]')).toHaveClass(/lost/);

@@ -61,6 +61,9 @@ class CoverageGrid {
   Eigen::Vector2d south_west_en_m() const { return {min_e_, min_n_}; }
   /// Whether a camera has seen cell (row, col); false outside the raster.
   bool Seen(int row, int col) const;
+  /// Every cell's Seen() as bits: cell (row, col) is bit (k mod 8) of byte k / 8,
+  /// k = row * cols() + col, least significant bit first.
+  std::vector<std::uint8_t> SeenBitset() const;
 
  private:
   double min_e_ = 0.0;

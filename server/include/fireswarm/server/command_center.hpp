@@ -79,15 +79,18 @@ class CommandCenter {
   /// GET /api/coverage: {"cell_m", "rows", "cols", "corners", "seen"} over the
   /// plan's area (docs/command_center.md); rows = cols = 0 before a plan with an area.
   nlohmann::json Coverage() const;
+  /// Changes whenever Coverage() does (a new raster, a cell seen): the web
+  /// adapter serialises the raster again only then.
+  std::uint64_t coverage_version() const { return coverage_version_; }
 
  private:
   struct Vehicle {
     vehicle_state_t last;                          // the latest message
-    nlohmann::json row;                            // its row, without the trail
+    std::optional<vehicle_state_t> sent;           // the one the last delta's row said
+    std::optional<common::EastNorth> local;        // last's position in frame_
     std::deque<nlohmann::json> trail;              // [lat, lon], oldest first
     std::optional<common::EastNorth> trail_end_m;  // the newest trail point, local
     std::size_t trail_unsent = 0;                  // newest trail points not in a delta yet
-    bool changed = true;                           // since the last delta
   };
   struct Track {
     int status = 0;
@@ -99,7 +102,11 @@ class CommandCenter {
                    const std::optional<common::EastNorth>& local);
   void WatchSeparation(const vehicle_state_t& message,
                        const std::optional<common::EastNorth>& local);
-  nlohmann::json VehicleJson(const Vehicle& vehicle, bool whole_trail) const;
+  // The vehicle's row with its whole trail (the state), or for a delta only what
+  // changed since the last delta's row, with the trail points since: nullopt when
+  // nothing did.
+  static nlohmann::json WholeRow(const Vehicle& vehicle);
+  static std::optional<nlohmann::json> RowChanges(const Vehicle& vehicle);
 
   CommandCenterConfig config_;
   double time_s_ = 0.0;
@@ -129,6 +136,7 @@ class CommandCenter {
   std::unique_ptr<internal::AlertLog> alerts_;
   std::unique_ptr<internal::SeparationWatch> separation_;
   std::unique_ptr<internal::CoverageRaster> coverage_;
+  std::uint64_t coverage_version_ = 0;
 };
 
 }  // namespace fireswarm::server

@@ -116,6 +116,9 @@ class MissionManager {
   std::vector<radio::Waypoint> Remaining(std::uint8_t vehicle, bool from_leg_start) const;
   /// The mission a drone flies now. Throws std::out_of_range as progress().
   const DroneMission& mission_of(std::uint8_t vehicle) const;
+  /// Counts the missions replaced: while it stays the same, every mission_of()
+  /// does (the plan's GeoJSON need not be built again).
+  std::uint64_t missions_version() const { return missions_version_; }
 
   const DroneProgress& progress(std::uint8_t vehicle) const;
   std::vector<std::uint8_t> vehicles() const;  ///< ascending
@@ -157,6 +160,7 @@ class MissionManager {
     int chunk = -1;  // -1: the start command
   };
   std::map<radio::RequestId, Pending> pending_;
+  std::uint64_t missions_version_ = 0;
 };
 
 }  // namespace fireswarm::server

@@ -89,10 +89,13 @@ class WebServer {
   /// (serialising a big fleet's state at every update costs more than the delta):
   /// call before broadcasting a change the state document does not hold yet. New
   /// WebSocket clients then wait, without broadcasts, until the next SetDocuments
-  /// gives them a snapshot that holds it. SetDocuments, SetPlanDocuments,
+  /// gives them a snapshot that holds it, and GET /api/state waits for that
+  /// document too. SetDocuments, SetPlanDocuments,
   /// HoldSnapshots and Broadcast are to be called from one thread.
   void HoldSnapshots();
-  /// True while a WebSocket client waits for its snapshot (see HoldSnapshots).
+  /// True while a WebSocket client waits for its snapshot, or a GET /api/state
+  /// for the state, because snapshots are held (see HoldSnapshots): the caller
+  /// should SetDocuments soon. GET /api/state gets 503 after answer_timeout.
   bool snapshot_wanted() const;
 
   /// Sends `json` to every connected WebSocket client (queued per client).
