@@ -60,14 +60,20 @@ WebFeed::WebFeed(server::WebServer& web, const std::string& source)
 
 void WebFeed::Step(server::Server& server, common::Nanos now, std::int64_t utime,
                    std::int64_t utime_at_zero) {
-  const double cpu_start_s = CpuSeconds(CLOCK_THREAD_CPUTIME_ID);
-  TakeCommands(server, now);
+  const std::vector<server::PendingCommand> commands = web_.TakeCommands();
+  const std::vector<server::ClientMessage> messages = web_.TakeClientMessages();
   const double now_s = common::ToSeconds(now);
   // 5 Hz of the run's clock, and no more often than 5 times a second of the wall
   // clock: a run paced at K would otherwise update and serialise K times as often
   // as anybody can watch (the delta taken later carries every change since the last).
   const std::chrono::steady_clock::time_point wall = std::chrono::steady_clock::now();
-  if (now_s + 1e-9 >= next_update_s_ && wall >= next_update_wall_) {
+  const bool update_due = now_s + 1e-9 >= next_update_s_ && wall >= next_update_wall_;
+  // Most steps have nothing to do: the looks above are atomic loads and the vDSO's
+  // clock. The thread's CPU clock, a system call, is read only around work.
+  if (commands.empty() && messages.empty() && !update_due && !web_.snapshot_wanted()) return;
+  const double cpu_start_s = CpuSeconds(CLOCK_THREAD_CPUTIME_ID);
+  Answer(server, now, commands, messages);
+  if (update_due) {
     next_update_s_ = now_s + kUpdatePeriodS;
     next_update_wall_ = wall + std::chrono::milliseconds(kUpdatePeriodMs);
     Update(server, now_s, utime, utime_at_zero);
@@ -95,8 +101,10 @@ nlohmann::json WebFeed::CpuFigures() const {
           {"share", process_cpu_s > 0.0 ? web_cpu_s / process_cpu_s : 0.0}};
 }
 
-void WebFeed::TakeCommands(server::Server& server, common::Nanos now) {
-  for (const server::PendingCommand& pending : web_.TakeCommands()) {
+void WebFeed::Answer(server::Server& server, common::Nanos now,
+                     const std::vector<server::PendingCommand>& commands,
+                     const std::vector<server::ClientMessage>& messages) {
+  for (const server::PendingCommand& pending : commands) {
     std::string why;
     const std::optional<server::OperatorCommand> command =
         server::ParseWebCommand(pending.body, &why);
@@ -119,7 +127,7 @@ void WebFeed::TakeCommands(server::Server& server, common::Nanos now) {
     web_.Answer(pending.id, status, ErrorBody(why));
   }
   // Live there are no replay controls to take.
-  for (const server::ClientMessage& message : web_.TakeClientMessages()) {
+  for (const server::ClientMessage& message : messages) {
     web_.SendTo(
         message.client,
         nlohmann::json{{"type", "error"}, {"error", "replay controls need a replay"}}.dump());

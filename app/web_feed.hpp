@@ -21,6 +21,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "fireswarm/common/time.hpp"
 #include "fireswarm/server/command_center.hpp"
@@ -42,7 +43,8 @@ class WebFeed {
             std::int64_t utime_at_zero);
 
   /// CPU time Step has taken on the caller's thread since the feed was made, s
-  /// (the model's updates, the documents' and deltas' serialisation, the commands).
+  /// (the model's updates, the documents' and deltas' serialisation, the commands;
+  /// not a step's look for work, a few atomic loads and a vDSO clock read).
   double cpu_seconds() const { return cpu_s_; }
 
   /// The web adapter's CPU against the process's, as one JSON event line's object:
@@ -52,7 +54,11 @@ class WebFeed {
   nlohmann::json CpuFigures() const;
 
  private:
-  void TakeCommands(server::Server& server, common::Nanos now);
+  // Hands the page's commands to the server and answers them; answers client
+  // messages (live, there are no replay controls).
+  void Answer(server::Server& server, common::Nanos now,
+              const std::vector<server::PendingCommand>& commands,
+              const std::vector<server::ClientMessage>& messages);
   void Update(const server::Server& server, double now_s, std::int64_t utime,
               std::int64_t utime_at_zero);
 

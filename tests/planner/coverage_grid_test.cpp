@@ -4,9 +4,11 @@
 
 #include <gtest/gtest.h>
 
+#include <boost/geometry.hpp>
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <random>
 #include <vector>
 
 #include "planner/planner_test_helpers.hpp"
@@ -101,6 +103,54 @@ TEST(CoverageGrid, HolesAndNoFlyZonesAreNotCounted) {
   EXPECT_EQ(grid.seen_cells(), 24U - 16U);
   grid.Mark({10.0, 50.0}, kNorth, 20.0, Seed(), -90.0);  // over the no-fly strip
   EXPECT_EQ(grid.seen_cells(), 24U - 16U + 4U * 1U);     // its east edge reaches x = 22.5
+}
+
+// A star-shaped polygon of `points` vertices around `centre`, radii in [low, high).
+Polygon Star(Point centre, double low, double high, int points, std::mt19937& random) {
+  std::uniform_real_distribution<double> radius(low, high);
+  Polygon star;
+  for (int i = 0; i < points; ++i) {
+    const double angle = 2.0 * std::numbers::pi * i / points;
+    const double r = radius(random);
+    star.outer().emplace_back(centre.x() + r * std::cos(angle), centre.y() + r * std::sin(angle));
+  }
+  star.outer().push_back(star.outer().front());
+  return star;
+}
+
+// The raster is made row by row (scanline); it must say what Boost.Geometry says
+// of every cell centre: covered by the area (holes out), not within a no-fly zone.
+// Concave rings, a hole, two overlapping polygons, zones across the boundary and
+// overlapping each other, nothing aligned with the cells.
+TEST(CoverageGrid, SearchableCellsAreThoseBoostGeometryPlacesInTheAreaOutOfTheZones) {
+  std::mt19937 random(7);
+  Polygon forest = Star({513.3, 287.9}, 200.0, 500.0, 60, random);
+  forest.inners().push_back(Star({480.0, 300.0}, 40.0, 120.0, 25, random).outer());
+  Polygon meadow = Rect(700.3, -100.7, 1'100.1, 180.2);
+  MultiPolygon area = {forest, meadow};
+  Polygon triangle;
+  triangle.outer() = {{300.1, 50.2}, {-50.3, 20.7}, {120.9, 400.4}, {300.1, 50.2}};
+  MultiPolygon no_fly = {triangle, Star({150.0, 200.0}, 30.0, 90.0, 12, random),
+                         Rect(900.2, 0.3, 1'300.7, 60.9)};
+  boost::geometry::correct(area);
+  boost::geometry::correct(no_fly);
+  const CoverageGrid grid(area, no_fly);
+  std::size_t searchable = 0;
+  std::size_t outside = 0;
+  const Eigen::Vector2d origin = grid.south_west_en_m();
+  for (int r = 0; r < grid.rows(); ++r) {
+    for (int c = 0; c < grid.cols(); ++c) {
+      const Point centre(origin.x() + (c + 0.5) * grid.cell_m(),
+                         origin.y() + (r + 0.5) * grid.cell_m());
+      const bool expected =
+          boost::geometry::covered_by(centre, area) && !boost::geometry::within(centre, no_fly);
+      ASSERT_EQ(grid.Searchable(r, c), expected) << "row " << r << ", col " << c;
+      (expected ? searchable : outside) += 1;
+    }
+  }
+  EXPECT_EQ(grid.searchable_cells(), searchable);
+  EXPECT_GT(searchable, 10'000U);
+  EXPECT_GT(outside, 10'000U);
 }
 
 TEST(CoverageGrid, NothingBelowTheSearchAltitudeOrFromNonsense) {

@@ -59,6 +59,9 @@ class CoverageGrid {
   int rows() const { return rows_; }
   int cols() const { return cols_; }
   Eigen::Vector2d south_west_en_m() const { return {min_e_, min_n_}; }
+  /// Whether cell (row, col) is searchable (its centre in the area, not in a
+  /// no-fly zone); false outside the raster.
+  bool Searchable(int row, int col) const;
   /// Whether a camera has seen cell (row, col); false outside the raster.
   bool Seen(int row, int col) const;
   /// Every cell's Seen() as bits: cell (row, col) is bit (k mod 8) of byte k / 8,
