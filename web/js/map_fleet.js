@@ -4,6 +4,8 @@
 /* global L */
 
 const ARROW = 'M0,-9 L6,7 L0,3 L-6,7 Z';
+/** Trail points redrawn at every update at most (drawTrail_). */
+const HEAD_POINTS = 16;
 
 function iconHtml(vehicle) {
   return `<svg viewBox="-10 -10 20 20" width="22" height="22" style="transform: rotate(${vehicle.heading_deg || 0}deg)">` +
@@ -39,10 +41,11 @@ export class FleetLayer {
         const icon = L.divIcon({ className: 'drone', html: iconHtml(vehicle), iconSize: [22, 22], iconAnchor: [11, 11] });
         const marker = L.marker(vehicle.position, { icon, keyboard: false, title: `drone ${vehicle.id}` });
         marker.on('click', () => this.onSelect_(vehicle.id));
-        const line = L.polyline(trail, { color: vehicle.colour, weight: 2, opacity: 0.8, interactive: false });
-        line.addTo(this.map_);
+        const style = { color: vehicle.colour, weight: 2, opacity: 0.8, interactive: false };
+        const body = L.polyline([], style).addTo(this.map_);
+        const head = L.polyline([], style).addTo(this.map_);
         marker.addTo(this.map_);
-        m = { marker, trail: line, heading: vehicle.heading_deg, trailLength: trail.length, lastPoint: null };
+        m = { marker, body, head, headFrom: 0, heading: vehicle.heading_deg, trailLength: -1, lastPoint: null };
         this.markers_.set(vehicle.id, m);
         this.decorate_(m, vehicle);
       }
@@ -54,13 +57,28 @@ export class FleetLayer {
         element.querySelector('svg').style.transform = `rotate(${vehicle.heading_deg || 0}deg)`;
       }
       const last = trail.length ? trail[trail.length - 1] : null;
-      if (trail.length !== m.trailLength || last !== m.lastPoint) {
-        m.trailLength = trail.length;
-        m.lastPoint = last;
-        m.trail.setLatLngs(trail);
-      }
+      if (trail.length !== m.trailLength || last !== m.lastPoint) this.drawTrail_(m, trail);
       this.decorate_(m, vehicle);
     }
+  }
+
+  // A trail is two polylines: the body, redrawn once every HEAD_POINTS new points,
+  // and the head, the points since, redrawn at every update. A polyline's change
+  // projects every point of it again: 100 drones' whole trails at every update
+  // were most of the page's script time.
+  drawTrail_(m, trail) {
+    const last = trail.length ? trail[trail.length - 1] : null;
+    // Where the head starts in `trail`: found by its first point (the store's
+    // trail drops its oldest points as new ones come).
+    let from = m.headPoint ? trail.lastIndexOf(m.headPoint) : -1;
+    if (from < 0 || trail.length - from > HEAD_POINTS) {
+      m.body.setLatLngs(trail);
+      from = Math.max(0, trail.length - 1);
+      m.headPoint = trail[from] || null;
+    }
+    m.head.setLatLngs(trail.slice(from));
+    m.trailLength = trail.length;
+    m.lastPoint = last;
   }
 
   // Writes the marker element's attributes, only those that changed (each write
