@@ -119,6 +119,9 @@ std::unique_ptr<server::WebServer> StartWebServer(
   config.tls_key = f.tls_key;
   config.tiles = f.tiles;
   config.read_only = read_only;
+  // The page's first snapshot is the feed's state, not an empty document: the
+  // server listens before the feed (WebFeed, ReplayFeed) is made.
+  config.wait_for_first_state = true;
   std::unique_ptr<server::WebServer> web;
   try {
     web = std::make_unique<server::WebServer>(config);

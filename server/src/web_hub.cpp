@@ -35,7 +35,8 @@ std::vector<T> TakeAll(std::unique_lock<std::mutex>& lock, std::condition_variab
 Hub::Hub(WebServerConfig config, std::unique_ptr<MbTiles> tiles)
     : config_(std::move(config)),
       tiles_(std::move(tiles)),
-      documents_{EmptyObject(), EmptyObject(), EmptyObject()} {}
+      documents_{EmptyObject(), EmptyObject(), EmptyObject()},
+      snapshots_held_(config_.wait_for_first_state) {}
 
 Documents Hub::documents() const {
   const std::lock_guard lock(mutex_);

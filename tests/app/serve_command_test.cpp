@@ -8,16 +8,22 @@
 #include <gtest/gtest.h>
 #include <poll.h>
 #include <pty.h>
+#include <sys/stat.h>
 #include <termios.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <array>
 #include <atomic>
+#include <boost/asio/ip/tcp.hpp>
+#include <boost/beast/core.hpp>
+#include <boost/beast/http.hpp>
+#include <boost/beast/websocket.hpp>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <lcm/lcm-cpp.hpp>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -34,6 +40,9 @@
 namespace fireswarm::app {
 namespace {
 
+namespace asio = boost::asio;
+namespace beast = boost::beast;
+namespace http = beast::http;
 using Clock = std::chrono::steady_clock;
 using Json = nlohmann::json;
 using std::chrono::seconds;
@@ -341,6 +350,131 @@ TEST_F(ServeCommand, WaitsForAnOperatorStartOnLcm) {
   }
   ASSERT_TRUE(taken.has_value()) << "the server took no START";
   EXPECT_EQ(taken->at("accepted"), true) << taken->dump();
+  const RunResult run = serve.Finish(Clock::now() + kMissionDeadline);
+  ASSERT_EQ(run.exit_code, 0) << (run.lines.empty() ? "" : run.lines.back());
+  ExpectAllDone(SummaryOf(run));
+  sim.Signal(SIGTERM);
+  EXPECT_EQ(sim.Finish(Clock::now() + kExitDeadline).exit_code, 0);
+}
+
+// The command center's WebSocket as the page reads it: the snapshot, then each
+// delta merged into it (docs/command_center.md). Reads block; the server under
+// test ends by itself (--duration-s), which closes the stream.
+class LiveStream {
+ public:
+  explicit LiveStream(std::uint16_t port) : ws_(io_) {
+    beast::get_lowest_layer(ws_).connect({asio::ip::make_address("127.0.0.1"), port});
+    ws_.handshake("127.0.0.1", "/ws");
+  }
+
+  // Reads and merges until `done(state)` holds; false when the stream ends first.
+  bool ReadUntil(const std::function<bool(const Json&)>& done) {
+    while (!done(state_)) {
+      beast::flat_buffer buffer;
+      beast::error_code error;
+      ws_.read(buffer, error);
+      if (error) return false;
+      Merge(Json::parse(beast::buffers_to_string(buffer.data())));
+    }
+    return true;
+  }
+
+  const Json& state() const { return state_; }
+
+ private:
+  void Merge(const Json& message) {
+    if (message.at("type") == "snapshot") {
+      state_ = message.at("state");
+      Json commands = Json::object();  // by ID, as deltas update them
+      for (const Json& command : state_.value("commands", Json::array())) {
+        commands[std::to_string(command.at("id").get<int>())] = command;
+      }
+      state_["commands"] = std::move(commands);
+      return;
+    }
+    if (message.at("type") != "delta") return;
+    if (message.contains("mission")) state_["mission"] = message.at("mission");
+    for (const Json& row : message.value("vehicles", Json::array())) {
+      Json& vehicles = state_["vehicles"];
+      const auto old = std::find_if(vehicles.begin(), vehicles.end(),
+                                    [&](const Json& v) { return v.at("id") == row.at("id"); });
+      if (old == vehicles.end()) {
+        vehicles.push_back(row);
+      } else {
+        old->merge_patch(row);
+      }
+    }
+    if (message.contains("refused")) state_["refused"] = message.at("refused");
+    for (const Json& command : message.value("commands", Json::array())) {
+      state_["commands"][std::to_string(command.at("id").get<int>())] = command;
+    }
+  }
+
+  asio::io_context io_;
+  beast::websocket::stream<beast::tcp_stream> ws_;
+  Json state_ = Json::object();
+};
+
+http::response<http::string_body> PostCommand(std::uint16_t port, const std::string& body,
+                                              const std::string& token) {
+  asio::io_context io;
+  beast::tcp_stream stream(io);
+  stream.connect({asio::ip::make_address("127.0.0.1"), port});
+  http::request<http::string_body> request{http::verb::post, "/api/command", 11};
+  request.set(http::field::host, "127.0.0.1");
+  if (!token.empty()) request.set(http::field::authorization, "Bearer " + token);
+  request.body() = body;
+  request.prepare_payload();
+  http::write(stream, request);
+  beast::flat_buffer buffer;
+  http::response<http::string_body> response;
+  http::read(stream, buffer, response);
+  return response;
+}
+
+// The page live on the real server: `serve --http` on a serial link to a
+// simulated fleet. The page sees both drones heard over the link, an operator's
+// start from the page goes through the server core and is acknowledged by both
+// drones, and the mission flies to its end; without the token it is refused.
+TEST_F(ServeCommand, TheCommandCenterShowsTheLinkAndStartsTheMission) {
+  PtyCable cable;
+  FireswarmProcess sim(SimArgs(cable.fleet_end()));
+  std::vector<std::string> serve_args = ServeArgs(cable.server_end());
+  std::erase(serve_args, "--start");
+  const std::string token = PathOf("token");
+  std::ofstream(token) << "page-operator\n";
+  ::chmod(token.c_str(), 0600);
+  serve_args.insert(serve_args.end(), {"--http", "127.0.0.1:0", "--operator-token-file", token});
+  FireswarmProcess serve(serve_args);
+  const std::optional<std::uint16_t> port = serve.ReadListeningPort(Clock::now() + kStartDeadline);
+  ASSERT_TRUE(port) << "no listening line";
+
+  LiveStream stream(*port);
+  const auto heard = [](const Json& state) {
+    int ok = 0;
+    for (const Json& v : state.value("vehicles", Json::array())) ok += v.at("link") == "ok";
+    return ok == 2;
+  };
+  ASSERT_TRUE(stream.ReadUntil(heard)) << stream.state().dump();
+  EXPECT_EQ(stream.state().at("source"), "live");
+  EXPECT_EQ(stream.state().at("read_only"), false);
+
+  EXPECT_EQ(PostCommand(*port, R"({"kind":"start"})", "").result(), http::status::unauthorized);
+  ASSERT_TRUE(stream.ReadUntil([](const Json& state) { return state.value("refused", 0) == 1; }))
+      << "the page counts the refusal";
+  const auto accepted = PostCommand(*port, R"({"kind":"start"})", "page-operator");
+  ASSERT_EQ(accepted.result(), http::status::accepted) << accepted.body();
+  const std::string id = std::to_string(Json::parse(accepted.body()).at("id").get<int>());
+  ASSERT_TRUE(stream.ReadUntil([&](const Json& state) {
+    return state.contains("commands") && state.at("commands").contains(id) &&
+           state.at("commands").at(id).at("state") == "acknowledged";
+  })) << stream.state().dump();
+  EXPECT_EQ(stream.state().at("commands").at(id).at("targets").size(), 2U);
+  ASSERT_TRUE(stream.ReadUntil([](const Json& state) {
+    return state.contains("mission") && state.at("mission").at("state") != "idle" &&
+           state.at("mission").at("state") != "uploading";
+  })) << stream.state().dump();
+
   const RunResult run = serve.Finish(Clock::now() + kMissionDeadline);
   ASSERT_EQ(run.exit_code, 0) << (run.lines.empty() ? "" : run.lines.back());
   ExpectAllDone(SummaryOf(run));

@@ -272,6 +272,25 @@ TEST_F(WebServerTest, AStateRequestWhileSnapshotsAreHeldGetsTheNextState) {
   EXPECT_EQ(head[http::field::content_length], std::to_string(std::string(R"({"time_s":3})").size()));
 }
 
+// A server that listens before its feed has a state: the first clients get the
+// first state, never the empty placeholder.
+TEST_F(WebServerTest, WaitingForTheFirstStateNobodyGetsTheEmptyOne) {
+  WebServerConfig config = Config();
+  config.wait_for_first_state = true;
+  WebServer server(config);
+  WsTestClient early(server.port());
+  std::future<testing::Response> answer =
+      std::async(std::launch::async, [&] { return Get(server.port(), "/api/state"); });
+  const auto deadline = std::chrono::steady_clock::now() + kWait;
+  while (!server.snapshot_wanted() && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::yield();  // the io thread registers the client (or the request)
+  }
+  ASSERT_TRUE(server.snapshot_wanted());
+  server.SetDocuments(R"({"time_s":0.2})", "{}", "{}");
+  EXPECT_EQ(early.Read(), R"({"type":"snapshot","state":{"time_s":0.2}})");
+  EXPECT_EQ(answer.get().body(), R"({"time_s":0.2})");
+}
+
 TEST_F(WebServerTest, AMalformedClientMessageGetsAnErrorAndTheServerServesOn) {
   WebServerConfig config = Config();
   config.max_client_message_bytes = 256;

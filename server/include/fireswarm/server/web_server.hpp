@@ -35,6 +35,10 @@ struct WebServerConfig {
   std::filesystem::path tls_key;   ///< PEM private key; given exactly when tls_cert is
   std::filesystem::path tiles;     ///< MBTiles file for /tiles/...; empty: none (404)
   bool read_only = false;          ///< every command is refused (403), e.g. a replay
+  /// Until the first SetDocuments, new WebSocket clients and GET /api/state wait
+  /// (as when held: HoldSnapshots) rather than get `{}`: for a server that
+  /// listens before its feed has a state.
+  bool wait_for_first_state = false;
   /// A command's body may be this long at most, bytes (longer: 400).
   std::size_t max_command_bytes = 16 * 1024;
   /// A command the caller has not answered this long after it arrived gets 503.
