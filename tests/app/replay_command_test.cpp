@@ -21,6 +21,7 @@
 #include <string>
 
 #include "app/fireswarm_process.hpp"
+#include "app/http_fetch.hpp"
 #include "app/run_fireswarm.hpp"
 
 namespace fireswarm::app {
@@ -38,27 +39,8 @@ const std::string kScenario = TinyScenario(120);
 
 constexpr auto kTimeout = seconds(60);
 
-http::response<http::string_body> Fetch(std::uint16_t port, http::verb verb,
-                                        const std::string& target, const std::string& body = "") {
-  asio::io_context io;
-  beast::tcp_stream stream(io);
-  stream.connect({asio::ip::make_address("127.0.0.1"), port});
-  http::request<http::string_body> request{verb, target, 11};
-  request.set(http::field::host, "127.0.0.1");
-  request.set(http::field::authorization, "Bearer anything");
-  if (verb == http::verb::post) {
-    request.body() = body;
-    request.prepare_payload();
-  }
-  http::write(stream, request);
-  beast::flat_buffer buffer;
-  http::response<http::string_body> response;
-  http::read(stream, buffer, response);
-  return response;
-}
-
 Json GetState(std::uint16_t port) {
-  return Json::parse(Fetch(port, http::verb::get, "/api/state").body());
+  return Json::parse(HttpFetch(port, http::verb::get, "/api/state").body());
 }
 
 // The page's side of the WebSocket stream; every read has a deadline.
@@ -176,7 +158,8 @@ TEST_F(ReplayCommandTest, ScrubbedToTheEndHoldsTheRunReportsFinalTracksAndRefuse
         << "track " << id;
   }
 
-  const auto refused = Fetch(*port, http::verb::post, "/api/command", R"({"kind":"hold_all"})");
+  const auto refused =
+      HttpFetch(*port, http::verb::post, "/api/command", R"({"kind":"hold_all"})", "anything");
   EXPECT_EQ(refused.result(), http::status::forbidden);
   replay_->Signal(SIGTERM);
   EXPECT_EQ(replay_->Finish(steady_clock::now() + kTimeout).exit_code, 0);

@@ -33,6 +33,7 @@
 #include <vector>
 
 #include "app/fireswarm_process.hpp"
+#include "app/http_fetch.hpp"
 #include "app/run_fireswarm.hpp"
 #include "fireswarm/common/angles.hpp"
 #include "fireswarm/operator_command_t.hpp"
@@ -415,23 +416,6 @@ class LiveStream {
   Json state_ = Json::object();
 };
 
-http::response<http::string_body> PostCommand(std::uint16_t port, const std::string& body,
-                                              const std::string& token) {
-  asio::io_context io;
-  beast::tcp_stream stream(io);
-  stream.connect({asio::ip::make_address("127.0.0.1"), port});
-  http::request<http::string_body> request{http::verb::post, "/api/command", 11};
-  request.set(http::field::host, "127.0.0.1");
-  if (!token.empty()) request.set(http::field::authorization, "Bearer " + token);
-  request.body() = body;
-  request.prepare_payload();
-  http::write(stream, request);
-  beast::flat_buffer buffer;
-  http::response<http::string_body> response;
-  http::read(stream, buffer, response);
-  return response;
-}
-
 // The page live on the real server: `serve --http` on a serial link to a
 // simulated fleet. The page sees both drones heard over the link, an operator's
 // start from the page goes through the server core and is acknowledged by both
@@ -459,10 +443,12 @@ TEST_F(ServeCommand, TheCommandCenterShowsTheLinkAndStartsTheMission) {
   EXPECT_EQ(stream.state().at("source"), "live");
   EXPECT_EQ(stream.state().at("read_only"), false);
 
-  EXPECT_EQ(PostCommand(*port, R"({"kind":"start"})", "").result(), http::status::unauthorized);
+  EXPECT_EQ(HttpFetch(*port, http::verb::post, "/api/command", R"({"kind":"start"})").result(),
+            http::status::unauthorized);
   ASSERT_TRUE(stream.ReadUntil([](const Json& state) { return state.value("refused", 0) == 1; }))
       << "the page counts the refusal";
-  const auto accepted = PostCommand(*port, R"({"kind":"start"})", "page-operator");
+  const auto accepted =
+      HttpFetch(*port, http::verb::post, "/api/command", R"({"kind":"start"})", "page-operator");
   ASSERT_EQ(accepted.result(), http::status::accepted) << accepted.body();
   const std::string id = std::to_string(Json::parse(accepted.body()).at("id").get<int>());
   ASSERT_TRUE(stream.ReadUntil([&](const Json& state) {

@@ -15,6 +15,7 @@
 #include <string>
 
 #include "app/fireswarm_process.hpp"
+#include "app/http_fetch.hpp"
 #include "app/run_fireswarm.hpp"
 
 namespace fireswarm::app {
@@ -27,28 +28,8 @@ namespace http = beast::http;
 // 800 m x 500 m, two drones, one fire, 30 simulated s.
 const std::string kScenario = TinyScenario(30);
 
-http::response<http::string_body> Fetch(std::uint16_t port, http::verb verb,
-                                        const std::string& target, const std::string& body = "",
-                                        const std::string& token = "") {
-  asio::io_context io;
-  beast::tcp_stream stream(io);
-  stream.connect({asio::ip::make_address("127.0.0.1"), port});
-  http::request<http::string_body> request{verb, target, 11};
-  request.set(http::field::host, "127.0.0.1");
-  if (!token.empty()) request.set(http::field::authorization, "Bearer " + token);
-  if (verb == http::verb::post) {
-    request.body() = body;
-    request.prepare_payload();
-  }
-  http::write(stream, request);
-  beast::flat_buffer buffer;
-  http::response<http::string_body> response;
-  http::read(stream, buffer, response);
-  return response;
-}
-
 http::response<http::string_body> Get(std::uint16_t port, const std::string& target) {
-  return Fetch(port, http::verb::get, target);
+  return HttpFetch(port, http::verb::get, target);
 }
 
 class WebFlagsTest : public CommandTest {
@@ -108,14 +89,15 @@ TEST_F(WebFlagsTest, RunServesThePageWhileItGoesAtThePaceAsked) {
             delta.at("built_unix_ms").get<std::int64_t>());
   // Commands reach the server core, which answers through the feed.
   const auto bogus =
-      Fetch(*port, http::verb::post, "/api/command", R"({"kind":"bogus"})", "operator-token");
+      HttpFetch(*port, http::verb::post, "/api/command", R"({"kind":"bogus"})", "operator-token");
   EXPECT_EQ(bogus.result(), http::status::bad_request);
   EXPECT_NE(bogus.body().find("kind"), std::string::npos) << bogus.body();
   const auto again =
-      Fetch(*port, http::verb::post, "/api/command", R"({"kind":"start"})", "operator-token");
+      HttpFetch(*port, http::verb::post, "/api/command", R"({"kind":"start"})", "operator-token");
   EXPECT_EQ(again.result(), http::status::conflict) << "the run started the mission already";
-  EXPECT_EQ(Fetch(*port, http::verb::post, "/api/command", R"({"kind":"start"})", "guess").result(),
-            http::status::unauthorized);
+  EXPECT_EQ(
+      HttpFetch(*port, http::verb::post, "/api/command", R"({"kind":"start"})", "guess").result(),
+      http::status::unauthorized);
   const RunResult result = run.Finish(deadline);
   EXPECT_EQ(result.exit_code, 0);
   // Its last word: the web adapter's CPU, a part of the process's.

@@ -60,7 +60,7 @@ TEST(CoverageGrid, SeenBitsetHoldsEveryCellRowByRowFromTheSouthWest) {
   for (int r = 0; r < grid.rows(); ++r) {
     for (int c = 0; c < grid.cols(); ++c) {
       const auto k = static_cast<std::size_t>(r * grid.cols() + c);
-      const bool bit = ((bits[k / 8] >> (k % 8)) & 1U) != 0;
+      const bool bit = ((static_cast<unsigned>(bits[k / 8]) >> (k % 8)) & 1U) != 0;
       EXPECT_EQ(bit, grid.Seen(r, c)) << r << ", " << c;
       set += bit ? 1 : 0;
     }
