@@ -50,8 +50,23 @@ double TemperatureOf(const CameraFrame& frame, int grey) {
 }
 
 Histogram HistogramOf(const CameraFrame& frame) {
+  // Four partial histograms: on plain ground neighbouring pixels share a grey
+  // level, and one table's increments would each wait for the one before (the
+  // histogram of every frame is most of the detector's time).
+  std::array<Histogram, 4> part{};
+  const std::span<const std::uint8_t> pixels = frame.pixels;
+  std::size_t i = 0;
+  for (; i + 4 <= pixels.size(); i += 4) {
+    ++part[0][pixels[i]];
+    ++part[1][pixels[i + 1]];
+    ++part[2][pixels[i + 2]];
+    ++part[3][pixels[i + 3]];
+  }
+  for (; i < pixels.size(); ++i) ++part[0][pixels[i]];
   Histogram histogram{};
-  for (const std::uint8_t grey : frame.pixels) ++histogram[grey];
+  for (std::size_t grey = 0; grey < histogram.size(); ++grey) {
+    histogram[grey] = part[0][grey] + part[1][grey] + part[2][grey] + part[3][grey];
+  }
   return histogram;
 }
 
