@@ -50,11 +50,8 @@ std::string ErrorBody(const std::string& why) {
 
 WebFeed::WebFeed(server::WebServer& web, const std::string& source)
     : web_(web), model_(ModelConfig(source)), plan_document_(model_.Plan().dump()) {
-  // GET /api/state answers with the model's source from the start; WebSocket
-  // clients wait for the first update's state (Update always serialises it).
-  nlohmann::json state = model_.State();
-  state["built_unix_ms"] = UnixMillisNow();
-  web_.SetDocuments(state.dump(), plan_document_, coverage_document_);
+  // WebSocket clients and GET /api/state wait for the state the first Step serves.
+  web_.SetPlanDocuments(plan_document_, coverage_document_);
   web_.HoldSnapshots();
 }
 
