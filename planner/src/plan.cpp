@@ -47,9 +47,21 @@ void ValidateFleet(const SearchArea& area, const FleetSpec& fleet) {
     Require(seen.insert(id).second, "receiver_ids: " + std::to_string(id) + " appears twice");
   }
   const std::size_t n = fleet.receiver_ids.size();
-  Require(fleet.launch_points.size() == 1 || fleet.launch_points.size() == n,
-          "launch_points: need 1 or " + std::to_string(n) + " (one per drone), got " +
-              std::to_string(fleet.launch_points.size()));
+  Require(!fleet.launch_points.empty(), "launch_points: the fleet has no launch site");
+  if (!fleet.site_drones.empty()) {
+    Require(fleet.site_drones.size() == fleet.launch_points.size(),
+            "site_drones: need one count per launch site (" +
+                std::to_string(fleet.launch_points.size()) + "), got " +
+                std::to_string(fleet.site_drones.size()));
+    long long total = 0;
+    for (const int count : fleet.site_drones) {
+      Require(count >= 0, "site_drones: a count is negative (" + std::to_string(count) + ")");
+      total += count;
+    }
+    Require(total == static_cast<long long>(n), "site_drones: the counts add up to " +
+                                                    std::to_string(total) + ", the fleet has " +
+                                                    std::to_string(n) + " drones");
+  }
   for (const Point& launch : fleet.launch_points) {
     Require(std::isfinite(launch.x()) && std::isfinite(launch.y()), "launch_points: not finite");
     Require(!bg::within(launch, area.no_fly), "launch_points: (" + std::to_string(launch.x()) +
@@ -60,6 +72,8 @@ void ValidateFleet(const SearchArea& area, const FleetSpec& fleet) {
           "speed_mps must be > 0, got " + std::to_string(fleet.speed_mps));
   Require(PositiveFinite(fleet.endurance_s),
           "endurance_s must be > 0, got " + std::to_string(fleet.endurance_s));
+  Require(fleet.swap_s >= 0.0 && std::isfinite(fleet.swap_s),
+          "swap_s must be >= 0, got " + std::to_string(fleet.swap_s));
   Require(fleet.turn_cost_s >= 0.0 && std::isfinite(fleet.turn_cost_s),
           "turn_cost_s must be >= 0, got " + std::to_string(fleet.turn_cost_s));
   SweepWidthM(fleet);  // throws naming camera, altitude_m, camera_pitch_deg or side_overlap
@@ -87,10 +101,18 @@ Box TransitBounds(const SearchArea& area, const std::vector<Point>& launches) {
       {box.max_corner().x() + kPlanBoundsMarginM, box.max_corner().y() + kPlanBoundsMarginM}};
 }
 
-std::vector<Point> LaunchPerDrone(const FleetSpec& fleet) {
-  std::vector<Point> launches(fleet.receiver_ids.size(), fleet.launch_points.front());
-  if (fleet.launch_points.size() == launches.size()) launches = fleet.launch_points;
-  return launches;
+// Each drone's launch site: `site_drones` when given, otherwise the drones spread
+// evenly over the sites in order.
+std::vector<std::size_t> SitePerDrone(const FleetSpec& fleet) {
+  const std::size_t n = fleet.receiver_ids.size(), k = fleet.launch_points.size();
+  std::vector<std::size_t> sites;
+  for (std::size_t site = 0; site < k; ++site) {
+    const std::size_t count = fleet.site_drones.empty()
+                                  ? (site + 1) * n / k - site * n / k
+                                  : static_cast<std::size_t>(fleet.site_drones[site]);
+    sites.insert(sites.end(), count, site);
+  }
+  return sites;
 }
 
 // A route along an OMPL coverage path: a turn wherever the heading changes sharply.
@@ -203,7 +225,9 @@ Plan PlanSearch(const SearchArea& area, const FleetSpec& fleet, PlannerKind kind
   const auto started = std::chrono::steady_clock::now();
   ValidateFleet(area, fleet);
   const MultiPolygon region = SearchRegion(area);
-  const std::vector<Point> launches = LaunchPerDrone(fleet);
+  const std::vector<std::size_t> sites = SitePerDrone(fleet);
+  std::vector<Point> launches;
+  for (const std::size_t site : sites) launches.push_back(fleet.launch_points[site]);
   const double footprint_m =
       FootprintWidthM(*fleet.camera, fleet.altitude_m, fleet.camera_pitch_deg);
   const SweepParams params{SweepWidthM(fleet), footprint_m, fleet.speed_mps, fleet.turn_cost_s};
@@ -232,6 +256,8 @@ Plan PlanSearch(const SearchArea& area, const FleetSpec& fleet, PlannerKind kind
   for (std::size_t i = 0; i < launches.size(); ++i) {
     DronePlan drone;
     drone.receiver_id = fleet.receiver_ids[i];
+    drone.site = sites[i];
+    drone.launch = launches[i];
     drone.region = ShareRegion(route, shares[i]);
     Flight flight;
     if (kind == PlannerKind::kOmpl && !drone.region.empty()) {
@@ -250,7 +276,8 @@ Plan PlanSearch(const SearchArea& area, const FleetSpec& fleet, PlannerKind kind
     }
     drone.sorties = flight.sorties;
     drone.length_m = flight.length_m;
-    drone.time_s = flight.time_s;
+    drone.ground_s = flight.sorties > 1 ? (flight.sorties - 1) * fleet.swap_s : 0.0;
+    drone.time_s = flight.time_s + drone.ground_s;
     drone.sweep_s = flight.sweep_s;
     drone.turn_s = flight.turn_s;
     drone.transit_s = flight.transit_s;

@@ -188,8 +188,19 @@ TEST(PlanSearch, RejectsABadFleetNamingTheField) {
   fleet.launch_points = {{500, 500}};
   ExpectRejected(fleet, "launch_points");
   fleet = good;
-  fleet.launch_points = {{0, 0}, {1, 1}, {2, 2}};
+  fleet.launch_points = {};
   ExpectRejected(fleet, "launch_points");
+  fleet = good;
+  fleet.launch_points = {{0, 0}, {1, 1}, {2, 2}};
+  fleet.site_drones = {1, 1};
+  ExpectRejected(fleet, "site_drones");
+  fleet.site_drones = {1, 1, 1};
+  ExpectRejected(fleet, "site_drones");  // the fleet has 2 drones
+  fleet.site_drones = {3, -1, 0};
+  ExpectRejected(fleet, "site_drones");
+  fleet = good;
+  fleet.swap_s = -1;
+  ExpectRejected(fleet, "swap_s");
   fleet = good;
   fleet.endurance_s = 0;
   ExpectRejected(fleet, "endurance_s");

@@ -22,11 +22,18 @@ struct SearchArea {
 
 /// The fleet and how it flies.
 struct FleetSpec {
-  std::vector<int> receiver_ids;     ///< one per drone, 1..254, distinct
-  std::vector<Point> launch_points;  ///< local metres; one for all, or one per drone
-  double altitude_m = 60.0;          ///< above ground
-  double speed_mps = 10.0;           ///< cruise speed along lanes and in transit
-  double endurance_s = 1'800.0;      ///< flight time per sortie, reserve excluded
+  std::vector<int> receiver_ids;  ///< one per drone, 1..254, distinct
+  /// Launch sites, local metres, at least one. The planner spreads the drones over
+  /// them (DronePlan::launch says where each flies from) unless `site_drones` fixes
+  /// how many each site has.
+  std::vector<Point> launch_points;
+  /// Empty, or one count per launch site (>= 0, summing to the number of drones).
+  std::vector<int> site_drones;
+  double altitude_m = 60.0;      ///< above ground
+  double speed_mps = 10.0;       ///< cruise speed along lanes and in transit
+  double endurance_s = 1'800.0;  ///< flight time per sortie, reserve excluded
+  /// On the ground between two sorties: landing, battery swap, take-off.
+  double swap_s = 300.0;
   const common::CameraModel* camera = nullptr;
   double camera_pitch_deg = -90.0;  ///< mount pitch from the horizon, -90 = straight down
   double side_overlap = 0.10;       ///< fraction of the footprint shared by neighbouring lanes
@@ -39,7 +46,7 @@ enum class PlannerKind { kLawnmower, kOmpl };
 struct Waypoint {
   Point local;
   common::LatLon geodetic;
-  bool is_return = false;  ///< a return-to-launch point between sorties
+  bool is_return = false;    ///< the landing at the launch site that ends a sortie (not the last)
   bool starts_lane = false;  ///< the leg from here to the next waypoint is a search lane
 };
 
@@ -47,10 +54,14 @@ struct Waypoint {
 /// sorties when it exceeds the endurance) and its estimates.
 struct DronePlan {
   int receiver_id = 0;
+  std::size_t site = 0;  ///< index into FleetSpec::launch_points
+  Point launch;          ///< that site: every sortie starts and ends here
   MultiPolygon region;
   std::vector<Waypoint> waypoints;
   int sorties = 1;
   double length_m = 0.0;
+  /// From the first take-off to the last landing: flight plus the swaps between
+  /// sorties ((sorties - 1) * FleetSpec::swap_s).
   double time_s = 0.0;
   /// time_s split by what the drone does: flying lanes, turning at lane ends
   /// (turn_cost_s each), and flying anything else (lane-to-lane connections,
@@ -58,6 +69,7 @@ struct DronePlan {
   double sweep_s = 0.0;
   double turn_s = 0.0;
   double transit_s = 0.0;
+  double ground_s = 0.0;  ///< on the ground between sorties
 };
 
 /// The fleet's plan and its figures. "Region" below is the searchable part:
