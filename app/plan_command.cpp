@@ -37,7 +37,9 @@ struct Flags {
   std::string no_fly;
   int drones = 0;
   std::string receiver_ids;
-  std::string launch;
+  std::vector<std::string> launch;
+  std::string launch_file;
+  double swap_s = 300.0;
   double altitude_m = 60.0;
   double speed_mps = 10.0;
   double endurance_s = 1'800.0;
@@ -103,15 +105,31 @@ std::vector<int> ReceiverIds(const Flags& f) {
   return ids;
 }
 
-planner::Point Launch(const Flags& f, const SearchArea& area) {
-  if (f.launch.empty()) return planner::DefaultLaunchPoint(area);
-  const std::optional<common::LatLon> launch = ParseLatLon(f.launch);
-  if (!launch) {
-    BadFlag("launch", "must be 'lat,lon' in degrees (lat in [-90, 90], lon in [-180, 180]), got '" +
-                          f.launch + "'");
+// The launch sites (--launch, each repeat one site, or --launch-file), in the
+// area's frame, and the drones per site when the file says.
+void SetLaunchSites(const Flags& f, const SearchArea& area, FleetSpec& fleet) {
+  auto local = [&area](const common::LatLon& position) {
+    const common::EastNorth en = area.frame.ToLocal(position);
+    return planner::Point{en.east_m, en.north_m};
+  };
+  if (!f.launch_file.empty()) {
+    const planner::LaunchSites sites = planner::LoadLaunchSites(f.launch_file);
+    for (const common::LatLon& position : sites.positions) {
+      fleet.launch_points.push_back(local(position));
+    }
+    fleet.site_drones = sites.drones;
+    return;
   }
-  const common::EastNorth local = area.frame.ToLocal(*launch);
-  return {local.east_m, local.north_m};
+  for (const std::string& text : f.launch) {
+    const std::optional<common::LatLon> launch = ParseLatLon(text);
+    if (!launch) {
+      BadFlag("launch",
+              "must be 'lat,lon' in degrees (lat in [-90, 90], lon in [-180, 180]), got '" + text +
+                  "'");
+    }
+    fleet.launch_points.push_back(local(*launch));
+  }
+  if (fleet.launch_points.empty()) fleet.launch_points.push_back(planner::DefaultLaunchPoint(area));
 }
 
 // Every flag's range, checked before any file is read or written.
@@ -124,6 +142,10 @@ void CheckFlags(const Flags& f) {
   if (!(f.altitude_m > 0)) BadFlag("altitude-m", "must be > 0, got " + Text(f.altitude_m));
   if (!(f.speed_mps > 0)) BadFlag("speed-mps", "must be > 0, got " + Text(f.speed_mps));
   if (!(f.endurance_s > 0)) BadFlag("endurance-s", "must be > 0, got " + Text(f.endurance_s));
+  if (!(f.swap_s >= 0)) BadFlag("swap-s", "must be >= 0, got " + Text(f.swap_s));
+  if (!f.launch.empty() && !f.launch_file.empty()) {
+    BadFlag("launch-file", "and --launch both give launch sites: use one of them");
+  }
   if (!(f.overlap >= 0 && f.overlap < 1)) {
     BadFlag("overlap", "must be in [0, 1), got " + Text(f.overlap));
   }
@@ -149,7 +171,8 @@ void CheckFlags(const Flags& f) {
 FleetSpec ToFleet(const Flags& f, const SearchArea& area) {
   FleetSpec fleet;
   fleet.receiver_ids = ReceiverIds(f);
-  fleet.launch_points = {Launch(f, area)};
+  SetLaunchSites(f, area, fleet);
+  fleet.swap_s = f.swap_s;
   fleet.altitude_m = f.altitude_m;
   fleet.speed_mps = f.speed_mps;
   fleet.endurance_s = f.endurance_s;
@@ -165,6 +188,8 @@ std::string InFlagTerms(const std::string& message) {
   static const std::pair<const char*, const char*> kFlagOfField[] = {
       {"receiver_ids", "receiver-ids"},
       {"launch_points", "launch"},
+      {"site_drones", "launch-file"},
+      {"swap_s", "swap-s"},
       {"altitude_m", "altitude-m"},
       {"speed_mps", "speed-mps"},
       {"endurance_s", "endurance-s"},
@@ -184,10 +209,16 @@ nlohmann::ordered_json ToJson(const Flags& f, const Plan& plan,
   nlohmann::ordered_json drones = nlohmann::ordered_json::array();
   for (const planner::DronePlan& d : plan.drones) {
     drones.push_back({{"receiver_id", d.receiver_id},
+                      {"site", d.site},
                       {"waypoints", d.waypoints.size()},
                       {"sorties", d.sorties},
                       {"length_m", d.length_m},
-                      {"time_s", d.time_s}});
+                      {"time_s", d.time_s},
+                      {"sweep_s", d.sweep_s},
+                      {"turn_s", d.turn_s},
+                      {"transit_s", d.transit_s},
+                      {"ground_s", d.ground_s},
+                      {"longest_sortie_s", d.longest_sortie_s}});
   }
   nlohmann::ordered_json files = nlohmann::ordered_json::array();
   for (const fs::path& p : qgc_files) files.push_back(p.string());
@@ -198,6 +229,7 @@ nlohmann::ordered_json ToJson(const Flags& f, const Plan& plan,
           {"coverage", plan.coverage},
           {"makespan_s", plan.makespan_s},
           {"lower_bound_s", plan.lower_bound_s},
+          {"lower_bound_basis", plan.lower_bound_basis},
           {"nofly_violation_m", plan.nofly_violation_m},
           {"planning_seconds", plan.planning_seconds},
           {"drones", std::move(drones)},
@@ -209,12 +241,13 @@ void PrintTable(const Flags& f, const Plan& plan, const std::vector<fs::path>& q
   std::cout << "plan: " << f.area << ", " << plan.drones.size() << " drones, " << f.planner
             << ", camera " << f.camera << ", sweep width " << std::fixed << std::setprecision(1)
             << plan.sweep_width_m << " m\n";
-  std::cout << "  receiver  waypoints  sorties  length (km)  time (min)\n";
+  std::cout
+      << "  receiver  site  waypoints  sorties  length (km)  time (min)  longest sortie (min)\n";
   for (const planner::DronePlan& d : plan.drones) {
-    std::cout << "  " << std::setw(8) << d.receiver_id << std::setw(11) << d.waypoints.size()
-              << std::setw(9) << d.sorties << std::setw(13) << std::setprecision(2)
-              << d.length_m / 1e3 << std::setw(12) << std::setprecision(1) << d.time_s / 60.0
-              << "\n";
+    std::cout << "  " << std::setw(8) << d.receiver_id << std::setw(6) << d.site + 1
+              << std::setw(11) << d.waypoints.size() << std::setw(9) << d.sorties << std::setw(13)
+              << std::setprecision(2) << d.length_m / 1e3 << std::setw(12) << std::setprecision(1)
+              << d.time_s / 60.0 << std::setw(22) << d.longest_sortie_s / 60.0 << "\n";
   }
   const double ratio = plan.lower_bound_s > 0 ? plan.makespan_s / plan.lower_bound_s : 0.0;
   std::cout << std::setprecision(2) << "  coverage " << 100.0 * plan.coverage << " %, makespan "
@@ -222,6 +255,7 @@ void PrintTable(const Flags& f, const Plan& plan, const std::vector<fs::path>& q
             << plan.lower_bound_s / 60.0 << " min, ratio " << std::setprecision(3) << ratio
             << "), in no-fly zones " << std::setprecision(1) << plan.nofly_violation_m
             << " m, planned in " << std::setprecision(3) << plan.planning_seconds << " s\n";
+  std::cout << "  lower bound from " << plan.lower_bound_basis << "\n";
   std::cout << "  wrote " << f.out;
   if (!qgc_files.empty()) std::cout << " and " << qgc_files.size() << " .plan files in " << f.qgc;
   std::cout << "\n";
@@ -240,9 +274,13 @@ int RunPlan(const std::vector<std::string>& args) {
   add("drones", po::value(&f.drones), "number of drones, 1..254");
   add("receiver-ids", po::value(&f.receiver_ids)->value_name("LIST"),
       "comma-separated receiver IDs, one per drone (default 1..N)");
-  add("launch", po::value(&f.launch)->value_name("LAT,LON"),
-      "launch site for every drone (default: the area's centroid, or the area corner nearest "
-      "to it when the centroid is outside the area)");
+  add("launch", po::value(&f.launch)->value_name("LAT,LON")->composing(),
+      "a launch site; repeat for several (the planner spreads the drones over them). Default: "
+      "the area's centroid, or the area corner nearest to it when the centroid is outside");
+  add("launch-file", po::value(&f.launch_file)->value_name("FILE"),
+      "launch sites as GeoJSON Points, each with an optional integer property \"drones\"");
+  add("swap-s", po::value(&f.swap_s)->default_value(f.swap_s),
+      "time on the ground between two sorties (landing, battery swap, take-off)");
   add("altitude-m", po::value(&f.altitude_m)->default_value(f.altitude_m),
       "flight altitude above ground");
   add("speed-mps", po::value(&f.speed_mps)->default_value(f.speed_mps), "cruise speed");

@@ -182,6 +182,30 @@ SearchArea LoadSearchArea(const std::filesystem::path& area_path,
   return ParseSearchArea(GeoJsonText{ReadFile(area_path), area_path.string()}, no_fly);
 }
 
+LaunchSites ParseLaunchSites(const GeoJsonText& sites) {
+  LaunchSites out;
+  std::size_t counted = 0;
+  const std::vector<geojson::GeoPoint> points =
+      geojson::ReadPointFeatures(sites.text, sites.source);
+  for (const geojson::GeoPoint& point : points) {
+    out.positions.push_back(point.position);
+    if (point.drones >= 0) ++counted;
+  }
+  if (counted != 0 && counted != points.size()) {
+    throw std::invalid_argument(sites.source + ": " + std::to_string(counted) + " of " +
+                                std::to_string(points.size()) +
+                                " sites give \"drones\": give it for every site or for none");
+  }
+  if (counted != 0) {
+    for (const geojson::GeoPoint& point : points) out.drones.push_back(point.drones);
+  }
+  return out;
+}
+
+LaunchSites LoadLaunchSites(const std::filesystem::path& path) {
+  return ParseLaunchSites(GeoJsonText{ReadFile(path), path.string()});
+}
+
 Point DefaultLaunchPoint(const SearchArea& area) {
   Point centroid;
   bg::centroid(area.area, centroid);

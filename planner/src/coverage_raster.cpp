@@ -119,30 +119,6 @@ double CoverageFraction(const MultiPolygon& region, const std::vector<Path>& pat
   return static_cast<double>(raster.Count(kInsideBit | kSeenBit)) / static_cast<double>(inside);
 }
 
-std::vector<double> CellDistancesM(const MultiPolygon& region, const std::vector<Point>& points,
-                                   double cell_m) {
-  std::vector<double> distances;
-  if (region.empty()) return distances;
-  Box box;
-  bg::envelope(region, box);
-  for (double y = box.min_corner().y() + cell_m / 2; y < box.max_corner().y(); y += cell_m) {
-    for (const Polygon& polygon : region) {
-      for (const auto& [a, b] : LineIntervals(polygon, y)) {
-        const double first = box.min_corner().x() +
-                             cell_m * (std::ceil((a - box.min_corner().x()) / cell_m - 0.5) + 0.5);
-        for (double x = first; x <= b; x += cell_m) {
-          double nearest = std::numeric_limits<double>::infinity();
-          for (const Point& p : points)
-            nearest = std::min(nearest, std::hypot(x - p.x(), y - p.y()));
-          distances.push_back(nearest);
-        }
-      }
-    }
-  }
-  std::sort(distances.begin(), distances.end(), std::greater<>());
-  return distances;
-}
-
 double CoverageCellM(double region_area_m2, double sweep_width_m) {
   const double cell_m = std::sqrt(std::max(region_area_m2, 0.0) / kTargetCells);
   return std::clamp(cell_m, std::min(kMinCellM, sweep_width_m / kCellsPerSweep),

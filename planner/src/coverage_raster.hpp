@@ -16,12 +16,6 @@ namespace fireswarm::planner {
 double CoverageFraction(const MultiPolygon& region, const std::vector<Path>& paths, double radius_m,
                         double cell_m);
 
-/// Distance in metres from the centre of every raster cell of `region` (cells of
-/// `cell_m`, as in CoverageFraction) to the nearest of `points`, sorted from the
-/// farthest down. Precondition: `points` is not empty.
-std::vector<double> CellDistancesM(const MultiPolygon& region, const std::vector<Point>& points,
-                                   double cell_m);
-
 /// The raster cell used for Plan::coverage: about 4 million cells over the region,
 /// at least 1 m and at most a tenth of the sweep width.
 double CoverageCellM(double region_area_m2, double sweep_width_m);

@@ -183,4 +183,65 @@ std::vector<GeoFeature> ReadPolygonFeatures(std::string_view text, std::string_v
   return features;
 }
 
+namespace {
+
+constexpr int kMaxSiteDrones = 254;
+
+GeoPoint ReadPoint(const Json& object, std::string_view source, std::size_t index, bool bare) {
+  Context context{source, bare ? std::string("geometry")
+                               : FeatureLabel(index, object.is_object() ? NameOf(object) : "")};
+  if (!object.is_object()) context.Fail("is not a GeoJSON object");
+  const Json* geometry = &object;
+  GeoPoint point;
+  point.label = context.label;
+  if (!bare) {
+    if (object.value("type", "") != "Feature") context.Fail("is not a GeoJSON Feature object");
+    if (!object.contains("geometry") || !object["geometry"].is_object()) {
+      context.Fail("has no \"geometry\" object");
+    }
+    geometry = &object["geometry"];
+    const auto properties = object.find("properties");
+    if (properties != object.end() && properties->is_object() && properties->contains("drones")) {
+      const Json& drones = (*properties)["drones"];
+      if (!drones.is_number_integer() || drones.get<long long>() < 0 ||
+          drones.get<long long>() > kMaxSiteDrones) {
+        context.Fail("properties.drones must be an integer in 0..254, got " + drones.dump());
+      }
+      point.drones = drones.get<int>();
+    }
+  }
+  if (geometry->value("type", "") != "Point") {
+    context.Fail("geometry is " + geometry->value("type", std::string("missing")) +
+                 ", expected a Point (a launch site)");
+  }
+  if (!geometry->contains("coordinates")) context.Fail("Point has no coordinates");
+  point.position = ReadPosition((*geometry)["coordinates"], context, "the position");
+  return point;
+}
+
+}  // namespace
+
+std::vector<GeoPoint> ReadPointFeatures(std::string_view text, std::string_view source) {
+  const Json document = Parse(text, source);
+  if (!document.is_object() || !document.contains("type") || !document["type"].is_string()) {
+    throw std::invalid_argument(std::string(source) +
+                                ": not a GeoJSON object (no \"type\" member)");
+  }
+  const std::string type = document["type"].get<std::string>();
+  std::vector<GeoPoint> points;
+  if (type == "FeatureCollection") {
+    if (!document.contains("features") || !document["features"].is_array()) {
+      throw std::invalid_argument(std::string(source) +
+                                  ": FeatureCollection has no \"features\" array");
+    }
+    const Json& list = document["features"];
+    for (std::size_t i = 0; i < list.size(); ++i)
+      points.push_back(ReadPoint(list[i], source, i, false));
+  } else {
+    points.push_back(ReadPoint(document, source, 0, type != "Feature"));
+  }
+  if (points.empty()) throw std::invalid_argument(std::string(source) + ": no Point feature");
+  return points;
+}
+
 }  // namespace fireswarm::planner::geojson

@@ -36,6 +36,19 @@ struct GeoFeature {
 /// than 4 positions or not closed, or no polygon at all.
 std::vector<GeoFeature> ReadPolygonFeatures(std::string_view text, std::string_view source);
 
+/// One Point feature of a launch-site file.
+struct GeoPoint {
+  std::string label;
+  common::LatLon position;
+  int drones = -1;  ///< properties.drones, -1 when absent
+};
+
+/// Parses `text`: a FeatureCollection of Point features, a Point Feature or a bare
+/// Point; properties.drones, when present, an integer in 0..254. Throws
+/// std::invalid_argument "<source>: <label>: <problem>" on malformed JSON, a
+/// geometry that is not a Point, a bad position or count, or no point at all.
+std::vector<GeoPoint> ReadPointFeatures(std::string_view text, std::string_view source);
+
 /// The error label of feature `index`: `feature 2`, or with a description such as
 /// `"north block"` (quoted name) or `id 17`: `feature 2 ("north block")`.
 std::string FeatureLabel(std::size_t index, const std::string& description);

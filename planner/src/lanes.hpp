@@ -29,24 +29,4 @@ struct LaneFrame {
 /// over all rings), sorted. For a y-monotone cell there is one interval.
 std::vector<std::pair<double, double>> LineIntervals(const Polygon& shape, double y_m);
 
-/// One pass over a cell, in the lane frame.
-struct Lane {
-  double y_m = 0.0;          ///< the lane's line
-  double x_min_m = 0.0;      ///< where the flown segment begins (western end)
-  double x_max_m = 0.0;      ///< and ends
-  double chord_min_m = 0.0;  ///< the cell's chord at y_m (x_min_m <= chord_min_m)
-  double chord_max_m = 0.0;
-  double band_lo_m = 0.0;  ///< the strip of the cell this lane is responsible for
-  double band_hi_m = 0.0;
-};
-
-/// Lanes over a y-monotone `cell` (lane frame): n = ceil(height / sweep) lanes
-/// spaced height / n <= sweep_width_m apart, the first and last half a spacing
-/// inside the cell's bottom and top. Each lane spans the cell's chord at its y
-/// (endpoints on the boundary), lengthened where the cell's strip reaches further
-/// than a footprint of radius `footprint_radius_m` centred on the chord's end
-/// would see (slanted boundaries), so the footprints cover the strip to its edge.
-/// Precondition: footprint_radius_m > sweep_width_m / 2.
-std::vector<Lane> CellLanes(const Polygon& cell, double sweep_width_m, double footprint_radius_m);
-
 }  // namespace fireswarm::planner

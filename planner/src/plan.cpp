@@ -8,6 +8,7 @@
 #include <limits>
 #include <map>
 #include <numbers>
+#include <numeric>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -16,9 +17,12 @@
 #include "coverage_raster.hpp"
 #include "fireswarm/planner/footprint.hpp"
 #include "fireswarm/planner/transit.hpp"
+#include "fleet_assignment.hpp"
+#include "lane_field.hpp"
 #include "lanes.hpp"
-#include "partition.hpp"
-#include "sorties.hpp"
+#include "lower_bound.hpp"
+#include "sortie_blocks.hpp"
+#include "sortie_flight.hpp"
 
 namespace fireswarm::planner {
 namespace bg = boost::geometry;
@@ -101,122 +105,149 @@ Box TransitBounds(const SearchArea& area, const std::vector<Point>& launches) {
       {box.max_corner().x() + kPlanBoundsMarginM, box.max_corner().y() + kPlanBoundsMarginM}};
 }
 
-// Each drone's launch site: `site_drones` when given, otherwise the drones spread
-// evenly over the sites in order.
-std::vector<std::size_t> SitePerDrone(const FleetSpec& fleet) {
-  const std::size_t n = fleet.receiver_ids.size(), k = fleet.launch_points.size();
-  std::vector<std::size_t> sites;
-  for (std::size_t site = 0; site < k; ++site) {
-    const std::size_t count = fleet.site_drones.empty()
-                                  ? (site + 1) * n / k - site * n / k
-                                  : static_cast<std::size_t>(fleet.site_drones[site]);
-    sites.insert(sites.end(), count, site);
-  }
-  return sites;
-}
+}  // namespace
 
-// A route along an OMPL coverage path: a turn wherever the heading changes sharply.
-Route RouteAlong(const Path& path, const FleetSpec& fleet) {
-  Route route;
-  route.speed_mps = fleet.speed_mps;
-  for (std::size_t i = 0; i < path.size(); ++i) {
-    double turn_s = 0.0;
-    if (i >= 2) {
-      const double h0 =
-          std::atan2(path[i - 1].y() - path[i - 2].y(), path[i - 1].x() - path[i - 2].x());
-      const double h1 = std::atan2(path[i].y() - path[i - 1].y(), path[i].x() - path[i - 1].x());
-      const double change = std::abs(std::remainder(h1 - h0, 2.0 * std::numbers::pi));
-      if (change > kOmplTurnAngleRad) turn_s = fleet.turn_cost_s;
+namespace {
+
+constexpr std::size_t kHullDirections = 3;
+constexpr double kSameDirectionRad = 5.0 * std::numbers::pi / 180.0;
+constexpr int kExtraSortieCounts = 2;  // sorties per drone tried beyond the least
+
+// Sweep directions worth trying: along the convex hull's edges that leave it
+// narrowest across (fewest lanes, longest ones), then east and north.
+std::vector<double> SweepDirections(const MultiPolygon& region) {
+  Polygon hull;
+  bg::convex_hull(region, hull);
+  std::vector<std::pair<double, double>> by_width;  // (width across, direction)
+  const auto& ring = hull.outer();
+  for (std::size_t i = 0; i + 1 < ring.size(); ++i) {
+    const double dx = ring[i + 1].x() - ring[i].x(), dy = ring[i + 1].y() - ring[i].y();
+    const double length = std::hypot(dx, dy);
+    if (length <= 0.0) continue;
+    double width = 0.0;
+    for (const Point& p : ring) {
+      width = std::max(width,
+                       std::abs((p.x() - ring[i].x()) * dy - (p.y() - ring[i].y()) * dx) / length);
     }
-    route.Extend(path[i], -1, turn_s);
+    by_width.emplace_back(width, std::atan2(dy, dx));
   }
-  return route;
+  std::sort(by_width.begin(), by_width.end());
+  std::vector<double> directions;
+  auto add = [&](double direction) {
+    direction = std::fmod(direction + 2.0 * std::numbers::pi, std::numbers::pi);
+    for (const double d : directions) {
+      const double diff = std::abs(d - direction);
+      if (std::min(diff, std::numbers::pi - diff) < kSameDirectionRad) return;
+    }
+    directions.push_back(direction);
+  };
+  for (const auto& [width, direction] : by_width) {
+    if (directions.size() >= kHullDirections) break;
+    add(direction);
+  }
+  add(0.0);
+  add(std::numbers::pi / 2.0);
+  return directions;
 }
 
-// A lower bound on the makespan (see Plan::lower_bound_s), in three terms:
-//  * work: area / (N * sweep * speed), the time to sweep the region if nothing else
-//    were flown, the lane spacing taken as the width seen per metre flown;
-//  * far area: for every distance r, the part A(r) of the region farther than r
-//    from the nearest launch point can only be seen while a drone is farther than
-//    r - w/2 (w: footprint width) and each drone needs 2 (r - w/2) / speed to get
-//    that far and back, so T >= A(r) / (N * sweep * speed) + 2 (r - w/2) / speed;
-//    r = the region's distance from the launches gives "work + the unavoidable
-//    round trip", r = its farthest point gives the reach of the farthest point.
-//  A(r) is measured on a raster of about 250,000 cells.
-double LowerBoundS(const MultiPolygon& region, const std::vector<Point>& launches, double sweep_m,
-                   double footprint_m, double speed_mps) {
-  constexpr double kBoundCells = 2.5e5;
-  const double area_m2 = AreaM2(region);
-  const double rate_m2ps = static_cast<double>(launches.size()) * sweep_m * speed_mps;
-  double bound_s = area_m2 / rate_m2ps;
-  const double cell_m = std::max(std::sqrt(area_m2 / kBoundCells), 0.1);
-  const std::vector<double> distances = CellDistancesM(region, launches, cell_m);
-  // Cells sorted farthest first: the k + 1 farthest make up A(r) at r = distances[k].
-  const double cell_area_m2 =
-      area_m2 / static_cast<double>(std::max<std::size_t>(distances.size(), 1));
-  for (std::size_t k = 0; k < distances.size(); ++k) {
-    const double far_m2 = static_cast<double>(k + 1) * cell_area_m2;
-    const double round_trip_s = 2.0 * std::max(0.0, distances[k] - footprint_m / 2.0) / speed_mps;
-    bound_s = std::max(bound_s, far_m2 / rate_m2ps + round_trip_s);
-  }
-  return bound_s;
-}
-
-// The partition's transit estimate between a launch point and a point of the
-// route: the straight distance when it enters no zone, otherwise the planned
-// distance (OMPL, memoised) from the launch to the route vertex nearest the point
-// plus the straight piece from there, exact at route vertices. A constant detour
-// per drone, measured for one set of cuts, does not follow the cuts as they move:
-// a drone charged a long detour for a share behind a zone then inflated every
-// other share (a 20-drone plan had one drone sweep 4 times its part).
-class TransitEstimate {
+// Straight distance, or around the no-fly zones when the segment enters one. The
+// detour is planned once per pair of kDetourCellM cells the endpoints fall in
+// and kept as a factor on the straight distance: the cutting asks for thousands of
+// nearby pairs, and one OMPL query each would take seconds.
+class TransitDistance {
  public:
-  TransitEstimate(const Route& route, const std::vector<Point>& launches,
-                  const TransitPlanner& transit)
-      : route_(route), launches_(launches), transit_(transit) {}
-
-  double DistanceM(Point a, Point b) const {
+  explicit TransitDistance(const TransitPlanner& transit) : transit_(transit) {}
+  double operator()(Point a, Point b) const {
     const double straight_m = bg::distance(a, b);
-    if (transit_.NoFly().empty() || transit_.IsClear(a, b)) return straight_m;
-    for (std::size_t i = 0; i < launches_.size(); ++i) {
-      if (bg::distance(launches_[i], a) == 0.0) return ViaRouteM(i, b);
-      if (bg::distance(launches_[i], b) == 0.0) return ViaRouteM(i, a);
+    if (transit_.NoFly().empty() || straight_m <= 0.0 || transit_.IsClear(a, b)) {
+      return straight_m;
     }
-    return transit_.DistanceM(a, b);
+    const auto cell = [](double v) { return static_cast<long long>(std::floor(v / kDetourCellM)); };
+    const auto key = std::make_tuple(cell(a.x()), cell(a.y()), cell(b.x()), cell(b.y()));
+    auto it = detour_.find(key);
+    if (it == detour_.end()) {
+      double factor = 1.0;
+      try {
+        factor = transit_.DistanceM(a, b) / straight_m;
+      } catch (const std::runtime_error&) {
+        // A pass's end inside a zone (the band beside it needs the pass, the flight
+        // leaves the zone out): the straight distance stands in for the estimate.
+      }
+      it = detour_.emplace(key, factor).first;
+    }
+    return straight_m * it->second;
   }
 
  private:
-  double ViaRouteM(std::size_t launch, Point p) const {
-    std::size_t nearest = 0;
-    double nearest_m = std::numeric_limits<double>::infinity();
-    for (std::size_t j = 0; j < route_.points.size(); ++j) {
-      const double d = bg::distance(route_.points[j], p);
-      if (d < nearest_m) {
-        nearest_m = d;
-        nearest = j;
-      }
-    }
-    if (!std::isfinite(nearest_m) || !transit_.IsClear(route_.points[nearest], p)) {
-      return transit_.DistanceM(launches_[launch], p);
-    }
-    std::vector<double>& memo = planned_m_[launch];
-    if (memo.empty()) memo.assign(route_.points.size(), -1.0);
-    if (memo[nearest] < 0.0)
-      memo[nearest] = transit_.DistanceM(launches_[launch], route_.points[nearest]);
-    return memo[nearest] + nearest_m;
-  }
-
-  const Route& route_;
-  const std::vector<Point>& launches_;
+  static constexpr double kDetourCellM = 250.0;
   const TransitPlanner& transit_;
-  mutable std::map<std::size_t, std::vector<double>> planned_m_;  // per launch, per route vertex
+  mutable std::map<std::tuple<long long, long long, long long, long long>, double> detour_;
 };
 
-std::vector<Share> Partition(const Route& route, const std::vector<Point>& launches,
-                             const TransitPlanner& transit) {
-  const TransitEstimate estimate(route, launches, transit);
-  return PartitionRoute(route, launches,
-                        [&estimate](Point a, Point b) { return estimate.DistanceM(a, b); });
+// Stripe heights worth trying for blocks of `work_s`: square blocks, half as
+// high, and two rows (long thin blocks: out along one lane, back along the next).
+std::vector<std::size_t> StripeRows(double work_s, double speed_mps, double spacing_m,
+                                    std::size_t rows) {
+  const double square = std::sqrt(std::max(work_s, 0.0) * speed_mps / spacing_m);
+  std::vector<std::size_t> out;
+  for (const double k : {square, square / 2.0, 2.0}) {
+    auto even = static_cast<std::size_t>(2.0 * std::max(1.0, std::round(k / 2.0)));
+    even = std::min(even, std::max<std::size_t>(rows + rows % 2, 2));
+    if (std::find(out.begin(), out.end(), even) == out.end()) out.push_back(even);
+  }
+  return out;
+}
+
+struct Candidate {
+  std::vector<LaneField> fields;
+  std::vector<SortieUnit> units;
+  Assignment assignment;
+};
+
+double LaneSeconds(const LaneField& field, double speed_mps) {
+  double lane_s = 0.0;
+  for (const LaneRow& row : field.rows) {
+    for (const Span& span : row.spans) lane_s += (span.hi_m - span.lo_m) / speed_mps;
+  }
+  return lane_s;
+}
+
+std::string Where(const SearchArea& area, Point p) {
+  const common::LatLon geodetic = area.frame.ToGeodetic({p.x(), p.y()});
+  char text[96];
+  std::snprintf(text, sizeof text, "(%.6f, %.6f)", geodetic.lat_deg, geodetic.lon_deg);
+  return text;
+}
+
+// Refuses an area with a point no sortie can reach and return from.
+void CheckReach(const SearchArea& area, const MultiPolygon& region, const FleetSpec& fleet,
+                double footprint_m) {
+  const FarthestPoint far = FarthestFromSites(region, fleet.launch_points);
+  const double round_trip_s =
+      2.0 * std::max(0.0, far.distance_m - footprint_m / 2.0) / fleet.speed_mps;
+  if (round_trip_s < fleet.endurance_s) return;
+  throw std::runtime_error(
+      "endurance_s " + std::to_string(std::lround(fleet.endurance_s)) +
+      " s is too short: the area at " + Where(area, far.point) + " (lat, lon) lies " +
+      std::to_string(std::lround(far.distance_m)) +
+      " m from the nearest launch site; seeing it and flying back takes more than " +
+      std::to_string(std::lround(round_trip_s)) + " s (a range of " +
+      std::to_string(std::lround(2.0 * far.distance_m)) +
+      " m out and back): add a launch site nearer to it or a longer endurance");
+}
+
+MultiPolygon UnitRegion(const SortieUnit& unit, const LaneField& field) {
+  const MultiPolygon& region_lane = field.region_lane;
+  MultiPolygon out;
+  for (const Block& block : unit.blocks) {
+    const double half = field.spacing_m / 2.0;
+    const Box box{{block.x_lo_m, field.rows[block.first_row].y_m - half},
+                  {block.x_hi_m, field.rows[block.end_row - 1].y_m + half}};
+    MultiPolygon piece;
+    bg::intersection(region_lane, box, piece);
+    for (const Polygon& polygon : piece) out.push_back(field.frame.ToLocal(polygon));
+  }
+  return out;
 }
 
 }  // namespace
@@ -225,48 +256,116 @@ Plan PlanSearch(const SearchArea& area, const FleetSpec& fleet, PlannerKind kind
   const auto started = std::chrono::steady_clock::now();
   ValidateFleet(area, fleet);
   const MultiPolygon region = SearchRegion(area);
-  const std::vector<std::size_t> sites = SitePerDrone(fleet);
-  std::vector<Point> launches;
-  for (const std::size_t site : sites) launches.push_back(fleet.launch_points[site]);
+  const std::vector<Point>& sites = fleet.launch_points;
+  const std::size_t drones = fleet.receiver_ids.size();
   const double footprint_m =
       FootprintWidthM(*fleet.camera, fleet.altitude_m, fleet.camera_pitch_deg);
-  const SweepParams params{SweepWidthM(fleet), footprint_m, fleet.speed_mps, fleet.turn_cost_s};
-  const TransitPlanner transit(area.no_fly, TransitBounds(area, launches), seed);
+  const double sweep_m = SweepWidthM(fleet);
+  CheckReach(area, region, fleet, footprint_m);
+  const TransitPlanner transit(area.no_fly, TransitBounds(area, sites), seed);
+  const TransitDistance distance(transit);
+  const TransitFn distance_fn = [&distance](Point a, Point b) { return distance(a, b); };
+  const SortieSpec spec{fleet.speed_mps, fleet.turn_cost_s, fleet.endurance_s};
 
-  // The sweep direction is chosen by the fleet's estimated makespan (the longest
-  // share, transits to and from the launch points included), not by the route's
-  // own length and turns alone.
-  Route route;
-  std::vector<Share> shares;
-  double best_s = std::numeric_limits<double>::infinity();
-  for (Route& candidate : SweepRoutes(region, params, launches.front(), transit)) {
-    std::vector<Share> candidate_shares = Partition(candidate, launches, transit);
-    double longest_s = 0.0;
-    for (const Share& share : candidate_shares) longest_s = std::max(longest_s, share.time_s);
-    if (longest_s < best_s) {
-      best_s = longest_s;
-      route = std::move(candidate);
-      shares = std::move(candidate_shares);
+  // Lane fields, one per sweep direction over the whole region (a family of
+  // fields, so that regions of their own, e.g. per site, can join later), each
+  // tried with several sorties per drone and stripe heights, both cuts. The
+  // assignment's makespan decides.
+  std::vector<std::vector<LaneField>> families;
+  for (const double direction : SweepDirections(region)) {
+    families.push_back({BuildLaneField(region, direction, sweep_m, 0.0)});
+  }
+  std::optional<Candidate> best;
+  for (std::vector<LaneField>& fields : families) {
+    std::vector<double> field_s;
+    for (const LaneField& field : fields) field_s.push_back(LaneSeconds(field, fleet.speed_mps));
+    const double lane_s = std::accumulate(field_s.begin(), field_s.end(), 0.0);
+    if (lane_s <= 0.0) continue;
+    const double per_drone_s = lane_s / static_cast<double>(drones);
+    const int least = std::max(1, static_cast<int>(std::ceil(per_drone_s / fleet.endurance_s)));
+    for (int sorties = least; sorties <= least + kExtraSortieCounts; ++sorties) {
+      const double target_s = per_drone_s / sorties;
+      const double wanted = static_cast<double>(drones) * sorties;
+      for (const std::size_t rows : StripeRows(target_s, fleet.speed_mps, fields.front().spacing_m,
+                                               fields.front().rows.size())) {
+        for (const bool equal_time : {true, false}) {
+          std::vector<SortieUnit> units;
+          bool cut = true;
+          for (std::size_t f = 0; f < fields.size() && cut; ++f) {
+            const auto share = static_cast<std::size_t>(std::ceil(wanted * field_s[f] / lane_s));
+            std::vector<SortieUnit> part =
+                equal_time ? CutSortieUnits(fields[f], rows, std::max<std::size_t>(share, 1), sites,
+                                            spec, distance_fn, 2.0 * sweep_m)
+                           : CutSortieUnitsByWork(fields[f], rows, target_s, sites, spec,
+                                                  distance_fn, 2.0 * sweep_m);
+            cut = !part.empty() || field_s[f] <= 0.0;
+            for (SortieUnit& unit : part) {
+              unit.field = f;
+              units.push_back(std::move(unit));
+            }
+          }
+          if (!cut || units.empty()) continue;
+          std::vector<std::vector<double>> unit_site_s(units.size());
+          for (std::size_t u = 0; u < units.size(); ++u) {
+            for (const Point& site : sites) {
+              unit_site_s[u].push_back(SortieTimeS(units[u], site, spec, distance_fn));
+            }
+          }
+          std::optional<Assignment> assignment =
+              AssignUnits(unit_site_s, drones, fleet.site_drones, fleet.endurance_s, fleet.swap_s);
+          if (!assignment) continue;
+          if (!best || assignment->makespan_s < best->assignment.makespan_s) {
+            best = Candidate{fields, std::move(units), std::move(*assignment)};
+          }
+        }
+      }
     }
+  }
+  if (!best) {
+    throw std::runtime_error("endurance_s " + std::to_string(std::lround(fleet.endurance_s)) +
+                             " s: no split of the area into sorties fits it from the launch "
+                             "sites given (site_drones may leave a needed site without drones)");
   }
 
   Plan plan;
-  plan.sweep_width_m = params.sweep_width_m;
+  plan.sweep_width_m = sweep_m;
+  // Receiver IDs in the order of the units' walk: neighbouring units go to drones
+  // next to each other in the fleet (the runner layers transit altitudes by fleet
+  // order, so drones working side by side differ in altitude where they turn).
+  std::vector<std::size_t> slots(drones);
+  std::iota(slots.begin(), slots.end(), std::size_t{0});
+  const auto first_unit = [&](std::size_t slot) {
+    const auto& units = best->assignment.drone_units[slot];
+    return units.empty() ? best->units.size() : *std::min_element(units.begin(), units.end());
+  };
+  std::stable_sort(slots.begin(), slots.end(),
+                   [&](std::size_t a, std::size_t b) { return first_unit(a) < first_unit(b); });
   std::vector<Path> paths;
-  for (std::size_t i = 0; i < launches.size(); ++i) {
+  for (std::size_t d = 0; d < drones; ++d) {
+    const std::size_t slot = slots[d];
     DronePlan drone;
-    drone.receiver_id = fleet.receiver_ids[i];
-    drone.site = sites[i];
-    drone.launch = launches[i];
-    drone.region = ShareRegion(route, shares[i]);
+    drone.receiver_id = fleet.receiver_ids[d];
+    drone.site = best->assignment.drone_site[slot];
+    drone.launch = sites[drone.site];
+    std::vector<SortieUnit> units;
+    for (const std::size_t u : best->assignment.drone_units[slot]) {
+      SortieUnit unit = best->units[u];
+      OrientUnit(best->fields[unit.field], unit, drone.launch, spec);
+      MultiPolygon unit_region = UnitRegion(unit, best->fields[unit.field]);
+      drone.region.insert(drone.region.end(), unit_region.begin(), unit_region.end());
+      units.push_back(std::move(unit));
+    }
     Flight flight;
-    if (kind == PlannerKind::kOmpl && !drone.region.empty()) {
-      const Route own = RouteAlong(
-          CoverOmpl(drone.region, params.sweep_width_m, launches[i], transit, seed), fleet);
-      flight =
-          FlyShare(own, Share{0.0, own.TotalS(), 0.0}, launches[i], fleet.endurance_s, transit);
+    if (kind == PlannerKind::kOmpl) {
+      std::vector<Path> covers;
+      for (const SortieUnit& unit : units) {
+        covers.push_back(CoverOmpl(UnitRegion(unit, best->fields[unit.field]), sweep_m,
+                                   drone.launch, transit, seed));
+      }
+      flight = FlyPaths(covers, drone.launch, fleet.speed_mps, fleet.turn_cost_s, kOmplTurnAngleRad,
+                        transit);
     } else {
-      flight = FlyShare(route, shares[i], launches[i], fleet.endurance_s, transit);
+      flight = FlySorties(units, drone.launch, fleet.speed_mps, fleet.turn_cost_s, transit);
     }
     Path path;
     for (const FlightPoint& p : flight.points) {
@@ -274,22 +373,26 @@ Plan PlanSearch(const SearchArea& area, const FleetSpec& fleet, PlannerKind kind
       const common::LatLon geodetic = area.frame.ToGeodetic({p.point.x(), p.point.y()});
       drone.waypoints.push_back({p.point, geodetic, p.is_return, p.starts_lane});
     }
-    drone.sorties = flight.sorties;
+    drone.sorties = std::max(flight.sorties, 1);
     drone.length_m = flight.length_m;
-    drone.ground_s = flight.sorties > 1 ? (flight.sorties - 1) * fleet.swap_s : 0.0;
-    drone.time_s = flight.time_s + drone.ground_s;
     drone.sweep_s = flight.sweep_s;
     drone.turn_s = flight.turn_s;
     drone.transit_s = flight.transit_s;
+    drone.longest_sortie_s = flight.longest_sortie_s;
+    drone.ground_s = flight.sorties > 1 ? (flight.sorties - 1) * fleet.swap_s : 0.0;
+    drone.time_s = flight.time_s + drone.ground_s;
     plan.makespan_s = std::max(plan.makespan_s, drone.time_s);
     plan.nofly_violation_m += InteriorLengthM(path, area.no_fly);
     paths.push_back(std::move(path));
     plan.drones.push_back(std::move(drone));
   }
-  plan.coverage = CoverageFraction(region, paths, footprint_m / 2.0,
-                                   CoverageCellM(AreaM2(region), params.sweep_width_m));
-  plan.lower_bound_s =
-      LowerBoundS(region, launches, params.sweep_width_m, footprint_m, fleet.speed_mps);
+  plan.coverage =
+      CoverageFraction(region, paths, footprint_m / 2.0, CoverageCellM(AreaM2(region), sweep_m));
+  const LowerBound bound = MakespanLowerBound(
+      region, sites,
+      {drones, sweep_m, footprint_m, fleet.speed_mps, fleet.endurance_s, fleet.swap_s});
+  plan.lower_bound_s = bound.seconds;
+  plan.lower_bound_basis = bound.basis;
   plan.planning_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return plan;

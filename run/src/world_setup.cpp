@@ -160,7 +160,7 @@ std::vector<server::DroneMission> InAltitudeLayers(std::vector<server::DroneMiss
     for (radio::Waypoint& waypoint : route) waypoint.altitude_m += offset_m;
     if (route.empty() || route.size() >= radio::kMaxMissionWaypoints) continue;
     radio::Waypoint way_home = route.back();
-    way_home.altitude_m += kAltitudeLayerM * static_cast<double>(k) - offset_m;
+    way_home.altitude_m += kReturnLayerM * static_cast<double>(k) - offset_m;
     way_home.flags = 0;  // no lane starts here
     route.push_back(way_home);
   }

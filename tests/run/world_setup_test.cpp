@@ -54,7 +54,7 @@ TEST(InAltitudeLayers, SearchesInLayersAndFliesHomeAtAnAltitudeOfItsOwn) {
   }
   ASSERT_EQ(return_altitudes.size(), missions.size());
   for (auto it = std::next(return_altitudes.begin()); it != return_altitudes.end(); ++it) {
-    EXPECT_GE(*it - *std::prev(it), kAltitudeLayerM - 1e-9);
+    EXPECT_GE(*it - *std::prev(it), kReturnLayerM - 1e-9);
   }
 }
 

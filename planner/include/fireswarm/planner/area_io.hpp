@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "fireswarm/planner/plan.hpp"
 
@@ -47,6 +48,20 @@ SearchArea ParseSearchArea(const GeoJsonText& area,
 /// std::invalid_argument as ParseSearchArea, and also when a file cannot be read.
 SearchArea LoadSearchArea(const std::filesystem::path& area_path,
                           const std::optional<std::filesystem::path>& no_fly_path = std::nullopt);
+
+/// Launch sites as a file gives them: each position and, when the file says,
+/// how many drones fly from it.
+struct LaunchSites {
+  std::vector<common::LatLon> positions;
+  std::vector<int> drones;  ///< empty, or one count per site
+};
+
+/// Reads launch sites from GeoJSON: a FeatureCollection of Point features (or one
+/// Point), each with an optional integer property `drones` (0..254), given for
+/// every site or for none. Throws std::invalid_argument naming `source`, the
+/// feature and the problem.
+LaunchSites ParseLaunchSites(const GeoJsonText& sites);
+LaunchSites LoadLaunchSites(const std::filesystem::path& path);
 
 /// Where the fleet launches when nobody says: the area's centroid when it lies in
 /// the area, otherwise the area corner nearest to it (the centroid of a U, or of

@@ -2,11 +2,11 @@
 // on Boost.Geometry. Every planner stage speaks these types.
 #pragma once
 
+#include <boost/geometry/geometries/box.hpp>
 #include <boost/geometry/geometries/linestring.hpp>
 #include <boost/geometry/geometries/multi_polygon.hpp>
 #include <boost/geometry/geometries/point_xy.hpp>
 #include <boost/geometry/geometries/polygon.hpp>
-#include <boost/geometry/geometries/box.hpp>
 
 namespace fireswarm::planner {
 

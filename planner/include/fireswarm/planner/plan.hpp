@@ -69,7 +69,8 @@ struct DronePlan {
   double sweep_s = 0.0;
   double turn_s = 0.0;
   double transit_s = 0.0;
-  double ground_s = 0.0;  ///< on the ground between sorties
+  double ground_s = 0.0;          ///< on the ground between sorties
+  double longest_sortie_s = 0.0;  ///< the longest single flight, <= FleetSpec::endurance_s
 };
 
 /// The fleet's plan and its figures. "Region" below is the searchable part:
@@ -90,6 +91,7 @@ struct Plan {
   /// launches it adds that unavoidable round trip. Ground time between sorties
   /// is not counted (nor in makespan_s).
   double lower_bound_s = 0.0;
+  std::string lower_bound_basis;   ///< which term of the bound gave lower_bound_s, in words
   double nofly_violation_m = 0.0;  ///< path metres strictly inside no-fly zones (0 when correct)
   double planning_seconds = 0.0;   ///< wall time PlanSearch took
 };
