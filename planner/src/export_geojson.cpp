@@ -37,9 +37,12 @@ Json PathFeature(const DronePlan& drone) {
           {"properties",
            {{"kind", "path"},
             {"receiver_id", drone.receiver_id},
+            {"site", drone.site},
             {"length_m", drone.length_m},
             {"time_s", drone.time_s},
             {"sorties", drone.sorties},
+            {"ground_s", drone.ground_s},
+            {"longest_sortie_s", drone.longest_sortie_s},
             {"waypoints", drone.waypoints.size()}}},
           {"geometry", {{"type", "LineString"}, {"coordinates", std::move(coordinates)}}}};
 }
@@ -78,9 +81,22 @@ std::string PlanToGeoJson(const Plan& plan, const SearchArea& area, const FleetS
   for (const Polygon& polygon : area.no_fly) {
     features.push_back(PolygonFeature(polygon, area.frame, {{"kind", "no_fly"}}));
   }
+  for (std::size_t site = 0; site < fleet.launch_points.size(); ++site) {
+    const Point& p = fleet.launch_points[site];
+    int drones = 0;
+    for (const DronePlan& drone : plan.drones) drones += drone.site == site ? 1 : 0;
+    features.push_back(
+        {{"type", "Feature"},
+         {"properties", {{"kind", "launch_site"}, {"site", site}, {"drones", drones}}},
+         {"geometry",
+          {{"type", "Point"}, {"coordinates", Position(area.frame.ToGeodetic({p.x(), p.y()}))}}}});
+  }
   Json figures = {{"coverage", plan.coverage},
                   {"makespan_s", plan.makespan_s},
                   {"lower_bound_s", plan.lower_bound_s},
+                  {"lower_bound_basis", plan.lower_bound_basis},
+                  {"endurance_s", fleet.endurance_s},
+                  {"swap_s", fleet.swap_s},
                   {"nofly_violation_m", plan.nofly_violation_m},
                   {"sweep_width_m", plan.sweep_width_m},
                   {"altitude_m", fleet.altitude_m},

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -142,6 +143,8 @@ TEST_F(PlanCommand, BadFlagsExitTwoNamingTheFlagAndWriteNothing) {
       {" --drones 2 --launch 95,10", "--launch"},
       {" --drones 2 --altitude-m abc", "altitude-m"},
       {" --drones 2 --no-such-flag 1", "no-such-flag"},
+      {" --drones 2 --swap-s -5", "--swap-s"},
+      {" --drones 2 --launch 46.2,-74.6 --launch 46.2", "--launch"},
   };
   for (const auto& [flags, named] : cases) {
     const RunResult run = RunFireswarm(Base() + flags + " --qgc " + PathOf("qgc"));
@@ -165,12 +168,76 @@ TEST_F(PlanCommand, BadAreaExitsTwoNamingFileAndFeature) {
   EXPECT_THAT(JoinLines(missing), HasSubstr("none.geojson: cannot open"));
 }
 
+// Two launch sites given twice over: by repeated --launch and by a GeoJSON file
+// that also fixes how many drones each site has.
+TEST_F(PlanCommand, LaunchSitesFromFlagsOrAFile) {
+  const RunResult flags = RunFireswarm(Base() +
+                                       " --drones 4 --launch 46.195,-74.61 --launch "
+                                       "46.205,-74.59 --swap-s 120 --endurance-s 600 --json");
+  ASSERT_EQ(flags.exit_code, 0) << JoinLines(flags);
+  const Json plan = Json::parse(flags.lines.at(0));
+  std::set<int> sites;
+  for (const Json& drone : plan["drones"]) {
+    sites.insert(drone["site"].get<int>());
+    EXPECT_DOUBLE_EQ(drone["ground_s"].get<double>(), 120.0 * (drone["sorties"].get<int>() - 1));
+    EXPECT_LE(drone["longest_sortie_s"].get<double>(), 600.0);
+  }
+  EXPECT_EQ(sites, (std::set<int>{0, 1}));
+  EXPECT_FALSE(plan["lower_bound_basis"].get<std::string>().empty());
+
+  std::ofstream(PathOf("sites.geojson")) << R"({"type":"FeatureCollection","features":[
+    {"type":"Feature","properties":{"drones":3},"geometry":{"type":"Point","coordinates":[-74.61,46.195]}},
+    {"type":"Feature","properties":{"drones":1},"geometry":{"type":"Point","coordinates":[-74.59,46.205]}}]})";
+  const RunResult file =
+      RunFireswarm(Base() + " --drones 4 --launch-file " + PathOf("sites.geojson") + " --json");
+  ASSERT_EQ(file.exit_code, 0) << JoinLines(file);
+  std::vector<int> per_site(2, 0);
+  const Json from_file = Json::parse(file.lines.at(0));
+  for (const Json& drone : from_file["drones"]) {
+    ++per_site.at(drone["site"].get<std::size_t>());
+  }
+  EXPECT_EQ(per_site, (std::vector<int>{3, 1}));
+  const Json written = Json::parse(std::ifstream(PathOf("plan.geojson")));
+  int site_points = 0;
+  for (const Json& feature : written["features"]) {
+    site_points += feature["properties"]["kind"] == "launch_site" ? 1 : 0;
+  }
+  EXPECT_EQ(site_points, 2);
+}
+
+TEST_F(PlanCommand, BadLaunchFileExitsTwoNamingFileAndFeature) {
+  std::ofstream(PathOf("sites.geojson")) << R"({"type":"FeatureCollection","features":[
+    {"type":"Feature","properties":{"drones":2},"geometry":{"type":"Point","coordinates":[-74.61,46.195]}},
+    {"type":"Feature","properties":{"name":"north gate","drones":-1},"geometry":{"type":"Point","coordinates":[-74.59,46.205]}}]})";
+  const RunResult run =
+      RunFireswarm(Base() + " --drones 2 --launch-file " + PathOf("sites.geojson"));
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_THAT(JoinLines(run), HasSubstr("sites.geojson: feature 1 (\"north gate\"): "
+                                        "properties.drones must be an integer in 0..254"));
+  EXPECT_FALSE(fs::exists(PathOf("plan.geojson")));
+  std::ofstream(PathOf("sites.geojson"), std::ios::trunc)
+      << R"({"type":"FeatureCollection","features":[
+    {"type":"Feature","properties":{"drones":1},"geometry":{"type":"Point","coordinates":[-74.61,46.195]}},
+    {"type":"Feature","properties":{"drones":5},"geometry":{"type":"Point","coordinates":[-74.59,46.205]}}]})";
+  const RunResult sum =
+      RunFireswarm(Base() + " --drones 2 --launch-file " + PathOf("sites.geojson"));
+  EXPECT_EQ(sum.exit_code, 2);
+  EXPECT_THAT(JoinLines(sum), HasSubstr("--launch-file: the counts add up to 6, the fleet has 2"));
+  std::ofstream(PathOf("sites.geojson"), std::ios::trunc)
+      << R"({"type":"Polygon","coordinates":[[[-74.61,46.195],[-74.59,46.195],[-74.59,46.205],[-74.61,46.195]]]})";
+  const RunResult polygon =
+      RunFireswarm(Base() + " --drones 2 --launch-file " + PathOf("sites.geojson"));
+  EXPECT_EQ(polygon.exit_code, 2);
+  EXPECT_THAT(JoinLines(polygon), HasSubstr("expected a Point"));
+}
+
 TEST_F(PlanCommand, HelpListsTheOptions) {
   const RunResult run = RunFireswarm("plan --help");
   EXPECT_EQ(run.exit_code, 0);
   const std::string text = JoinLines(run);
-  for (const char* flag : {"--area", "--no-fly", "--drones", "--altitude-m", "--speed-mps",
-                           "--camera", "--planner", "--out", "--qgc", "--json", "--launch"}) {
+  for (const char* flag :
+       {"--area", "--no-fly", "--drones", "--altitude-m", "--speed-mps", "--camera", "--planner",
+        "--out", "--qgc", "--json", "--launch", "--launch-file", "--swap-s"}) {
     EXPECT_THAT(text, HasSubstr(flag));
   }
 }

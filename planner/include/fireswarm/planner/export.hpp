@@ -21,10 +21,13 @@ std::vector<std::vector<common::LatLon>> GeoJsonRings(const Polygon& polygon,
                                                       const common::LocalFrame& frame);
 
 /// The plan as an RFC 7946 FeatureCollection ([lon, lat], right-hand rule rings):
-/// per drone a LineString (properties: kind "path", receiver_id, length_m, time_s,
-/// sorties, waypoints) and its region as Polygons (kind "region", receiver_id);
-/// the area (kind "area") and no-fly zones (kind "no_fly") as Polygons; the fleet
-/// figures (coverage, makespan_s, ...) in the collection's "fireswarm" member.
+/// per drone a LineString (properties: kind "path", receiver_id, site, length_m,
+/// time_s, sorties, ground_s, longest_sortie_s, waypoints; its landings between
+/// sorties are the launch site) and its region as Polygons (kind "region",
+/// receiver_id); the area (kind "area") and no-fly zones (kind "no_fly") as
+/// Polygons; each launch site as a Point (kind "launch_site", site, drones); the
+/// fleet figures (coverage, makespan_s, lower_bound_s and its basis, ...) in the
+/// collection's "fireswarm" member.
 std::string PlanToGeoJson(const Plan& plan, const SearchArea& area, const FleetSpec& fleet);
 
 /// One QGroundControl .plan file: the name to give it and its JSON text.
