@@ -12,9 +12,9 @@ namespace {
 
 constexpr int kCutBisectionSteps = 24;
 constexpr double kCutResolutionM = 1.0;
-constexpr int kLimitBisectionSteps = 18;
+constexpr int kLimitBisectionSteps = 22;
 // A unit goes on into the next piece of the snake when the hop there costs at
-// most this share of the endurance.
+// most this share of the sortie limit.
 constexpr double kMaxLinkShare = 0.1;
 
 // What row r of the field has to fly between x_lo and x_hi: from its first span's
@@ -179,14 +179,8 @@ std::vector<SnakePiece> SnakeOrder(const LaneField& field, std::size_t rows_per_
 class SnakeCutter {
  public:
   SnakeCutter(const LaneField& field, const std::vector<SnakePiece>& pieces,
-              const std::vector<Point>& sites, const SortieSpec& spec, const TransitFn& distance_m,
-              double max_link_s)
-      : field_(field),
-        pieces_(pieces),
-        sites_(sites),
-        spec_(spec),
-        distance_m_(distance_m),
-        max_link_s_(max_link_s) {}
+              const std::vector<Point>& sites, const SortieSpec& spec, const TransitFn& distance_m)
+      : field_(field), pieces_(pieces), sites_(sites), spec_(spec), distance_m_(distance_m) {}
 
   // Units whose sortie from the nearest site takes <= limit_s, walking the snake;
   // empty when some piece of lane cannot be flown within the limit at all.
@@ -197,7 +191,9 @@ class SnakeCutter {
       double at = piece.eastward ? piece.span.lo_m : piece.span.hi_m;
       const double end = piece.eastward ? piece.span.hi_m : piece.span.lo_m;
       while (at != end) {
-        if (!current.blocks.empty() && !Linkable(current, piece, at)) Close(current, units);
+        if (!current.blocks.empty() && !Linkable(current, piece, at, limit_s)) {
+          Close(current, units);
+        }
         const double reach = Reach(current, piece, at, end, limit_s);
         if (reach == at) {
           if (current.blocks.empty()) return {};
@@ -213,6 +209,12 @@ class SnakeCutter {
     return units;
   }
 
+  // The unit's sortie from the nearest site.
+  double TimeS(const SortieUnit& unit) const {
+    if (unit.passes.empty()) return 0.0;
+    return NearestSiteSortieS(unit, sites_, spec_, distance_m_);
+  }
+
  private:
   SortieUnit With(const SortieUnit& unit, const SnakePiece& piece, double from, double to) const {
     SortieUnit out = unit;
@@ -224,11 +226,6 @@ class SnakeCutter {
   Point Centre(const Block& b) const {
     const double y = (field_.rows[b.first_row].y_m + field_.rows[b.end_row - 1].y_m) / 2.0;
     return field_.frame.ToLocal(Point{(b.x_lo_m + b.x_hi_m) / 2.0, y});
-  }
-
-  double TimeS(const SortieUnit& unit) const {
-    if (unit.passes.empty()) return 0.0;
-    return NearestSiteSortieS(unit, sites_, spec_, distance_m_);
   }
 
   // The farthest point towards `end` the unit may take of the piece within the limit.
@@ -244,10 +241,10 @@ class SnakeCutter {
   }
 
   // A unit goes on into the next piece when the hop there is short.
-  bool Linkable(const SortieUnit& unit, const SnakePiece& piece, double at) const {
+  bool Linkable(const SortieUnit& unit, const SnakePiece& piece, double at, double limit_s) const {
     const double y = field_.rows[piece.first_row].y_m;
     const Point start = field_.frame.ToLocal(Point{at, y});
-    return bg::distance(unit.exit, start) / spec_.speed_mps <= max_link_s_;
+    return bg::distance(unit.exit, start) / spec_.speed_mps <= kMaxLinkShare * limit_s;
   }
 
   void Close(SortieUnit& unit, std::vector<SortieUnit>& units) const {
@@ -260,7 +257,6 @@ class SnakeCutter {
   const std::vector<Point>& sites_;
   const SortieSpec& spec_;
   const TransitFn& distance_m_;
-  double max_link_s_;
 };
 
 }  // namespace
@@ -270,12 +266,13 @@ std::vector<SortieUnit> CutSortieUnits(const LaneField& field, std::size_t rows_
                                        const SortieSpec& spec, const TransitFn& distance_m,
                                        double gap_m) {
   const std::vector<SnakePiece> pieces = SnakeOrder(field, rows_per_stripe, gap_m);
-  const SnakeCutter cutter(field, pieces, sites, spec, distance_m,
-                           kMaxLinkShare * spec.endurance_s);
+  const SnakeCutter cutter(field, pieces, sites, spec, distance_m);
   std::vector<SortieUnit> best = cutter.Cut(spec.endurance_s);
   if (best.empty() || best.size() >= units_wanted) return best;
   // The shortest sortie limit that still needs no more than units_wanted units.
-  double low_s = 0.0, high_s = spec.endurance_s;
+  // No unit of the cut at the endurance takes longer than its longest one.
+  double low_s = 0.0, high_s = 0.0;
+  for (const SortieUnit& unit : best) high_s = std::max(high_s, cutter.TimeS(unit));
   for (int step = 0; step < kLimitBisectionSteps; ++step) {
     const double mid_s = (low_s + high_s) / 2.0;
     std::vector<SortieUnit> units = cutter.Cut(mid_s);
