@@ -118,6 +118,19 @@ struct Row {
   std::string refused;
 };
 
+// Connected pieces per sortie's region: the mean and the largest.
+std::pair<double, std::size_t> SortiePieces(const fp::Plan& plan) {
+  std::size_t sorties = 0, pieces = 0, most = 0;
+  for (const fp::DronePlan& d : plan.drones) {
+    for (const fp::MultiPolygon& region : d.sortie_regions) {
+      ++sorties;
+      pieces += region.size();
+      most = std::max(most, region.size());
+    }
+  }
+  return {sorties ? static_cast<double>(pieces) / static_cast<double>(sorties) : 0.0, most};
+}
+
 int MostSorties(const fp::Plan& plan) {
   int most = 0;
   for (const fp::DronePlan& d : plan.drones) most = std::max(most, d.sorties);
@@ -146,7 +159,8 @@ void PrintRow(const Row& r) {
             << 100.0 * p.coverage << std::setw(12) << std::setprecision(1) << p.makespan_s / 60.0
             << std::setw(9) << p.lower_bound_s / 60.0 << std::setw(8) << std::setprecision(3)
             << p.makespan_s / p.lower_bound_s << std::setw(9) << std::setprecision(2)
-            << p.planning_seconds << "  " << p.lower_bound_basis.substr(0, 30) << std::endl;
+            << p.planning_seconds << std::setw(8) << SortiePieces(p).first << " max "
+            << SortiePieces(p).second << "  " << p.lower_bound_basis.substr(0, 30) << std::endl;
 }
 
 nlohmann::ordered_json ToJson(const Row& r) {
@@ -167,6 +181,8 @@ nlohmann::ordered_json ToJson(const Row& r) {
   j["lower_bound_basis"] = r.plan->lower_bound_basis;
   j["nofly_violation_m"] = r.plan->nofly_violation_m;
   j["planning_seconds"] = r.plan->planning_seconds;
+  j["pieces_per_sortie_mean"] = SortiePieces(*r.plan).first;
+  j["pieces_per_sortie_max"] = SortiePieces(*r.plan).second;
   return j;
 }
 

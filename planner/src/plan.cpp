@@ -250,6 +250,21 @@ MultiPolygon UnitRegion(const SortieUnit& unit, const LaneField& field) {
   return out;
 }
 
+// The pieces of a sortie's region united where they touch (blocks side by side
+// in a stripe, or across a stripe's edge). Boost.Geometry's union can drop a
+// piece of a shape that touches itself at a point: then the pieces stay as given.
+MultiPolygon Merged(const MultiPolygon& pieces) {
+  constexpr double kAreaTolerance = 1e-6;
+  MultiPolygon merged;
+  for (const Polygon& piece : pieces) {
+    MultiPolygon next;
+    bg::union_(merged, piece, next);
+    merged = std::move(next);
+  }
+  if (AreaM2(merged) < AreaM2(pieces) * (1.0 - kAreaTolerance)) return pieces;
+  return merged;
+}
+
 }  // namespace
 
 Plan PlanSearch(const SearchArea& area, const FleetSpec& fleet, PlannerKind kind, unsigned seed) {
@@ -351,8 +366,9 @@ Plan PlanSearch(const SearchArea& area, const FleetSpec& fleet, PlannerKind kind
     for (const std::size_t u : best->assignment.drone_units[slot]) {
       SortieUnit unit = best->units[u];
       OrientUnit(best->fields[unit.field], unit, drone.launch, spec);
-      MultiPolygon unit_region = UnitRegion(unit, best->fields[unit.field]);
+      MultiPolygon unit_region = Merged(UnitRegion(unit, best->fields[unit.field]));
       drone.region.insert(drone.region.end(), unit_region.begin(), unit_region.end());
+      drone.sortie_regions.push_back(std::move(unit_region));
       units.push_back(std::move(unit));
     }
     Flight flight;

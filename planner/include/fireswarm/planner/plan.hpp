@@ -57,6 +57,9 @@ struct DronePlan {
   std::size_t site = 0;  ///< index into FleetSpec::launch_points
   Point launch;          ///< that site: every sortie starts and ends here
   MultiPolygon region;
+  /// Each sortie's part of `region`: one polygon where the sortie's work is one
+  /// connected piece of ground.
+  std::vector<MultiPolygon> sortie_regions;
   std::vector<Waypoint> waypoints;
   int sorties = 1;
   double length_m = 0.0;
