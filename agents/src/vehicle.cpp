@@ -133,7 +133,7 @@ void Vehicle::ProcessFrame(Nanos now, const CameraFrame& frame) {
     return;
   }
   ObserverPose pose;
-  pose.position = state.position;
+  pose.position = estimator_.position();
   pose.altitude_m = state.altitude_m;
   pose.roll_rad = state.attitude.roll_rad;
   pose.pitch_rad = state.attitude.pitch_rad;
@@ -164,8 +164,9 @@ void Vehicle::UpdateTelemetry(Nanos now) {
   radio::Telemetry telemetry;
   telemetry.time_ms = static_cast<std::uint32_t>(
       std::chrono::duration_cast<std::chrono::milliseconds>(now).count());
-  telemetry.lat_deg = state.position.lat_deg;
-  telemetry.lon_deg = state.position.lon_deg;
+  const common::LatLon position = estimator_.position();
+  telemetry.lat_deg = position.lat_deg;
+  telemetry.lon_deg = position.lon_deg;
   telemetry.altitude_m = state.altitude_m;
   telemetry.velocity_north_mps = state.velocity_north_mps;
   telemetry.velocity_east_mps = state.velocity_east_mps;
