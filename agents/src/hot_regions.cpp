@@ -101,14 +101,14 @@ double FireLevelC(const CameraFrame& frame, const DetectorConfig& config) {
   return std::min(config.min_fire_temperature_c, config.saturation_c - 0.5 * KelvinPerGrey(frame));
 }
 
-// The darkest and brightest grey level of the frame. Blocks of a fixed size
-// with scalar accumulators: GCC vectorises that inner loop at -O2 (its cheap
-// cost model takes no loop of unknown length).
-std::pair<int, int> GreyRangeOf(std::span<const std::uint8_t> pixels) {
-  constexpr std::size_t kBlock = 64;
-  std::uint8_t lo = 255;
-  std::uint8_t hi = 0;
-  std::size_t i = 0;
+// Folds the pixels from `start` on, in whole blocks of kBlock, into the darkest
+// and brightest grey level; returns where the blocks end. A loop of fixed length
+// with scalar accumulators: GCC vectorises it at -O2 (its cheap cost model takes
+// no loop of unknown length), and reduces the vectors once per block.
+template <std::size_t kBlock>
+std::size_t FoldGreyRange(std::span<const std::uint8_t> pixels, std::size_t start, std::uint8_t& lo,
+                          std::uint8_t& hi) {
+  std::size_t i = start;
   for (; i + kBlock <= pixels.size(); i += kBlock) {
     const std::uint8_t* block = pixels.data() + i;
     for (std::size_t k = 0; k < kBlock; ++k) {
@@ -116,6 +116,16 @@ std::pair<int, int> GreyRangeOf(std::span<const std::uint8_t> pixels) {
       hi = std::max(hi, block[k]);
     }
   }
+  return i;
+}
+
+// The darkest and brightest grey level of the frame: long blocks first (a seed
+// frame is six of them), short ones for the rest, then pixel by pixel.
+std::pair<int, int> GreyRangeOf(std::span<const std::uint8_t> pixels) {
+  std::uint8_t lo = 255;
+  std::uint8_t hi = 0;
+  std::size_t i = FoldGreyRange<1024>(pixels, 0, lo, hi);
+  i = FoldGreyRange<64>(pixels, i, lo, hi);
   for (; i < pixels.size(); ++i) {
     lo = std::min(lo, pixels[i]);
     hi = std::max(hi, pixels[i]);

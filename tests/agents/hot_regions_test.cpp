@@ -238,10 +238,11 @@ TEST(FindHotRegions, LabelsEightConnectedRegionsAndDropsSmallOnes) {
 
 // Frames settled without the histogram (every pixel within min_excess_k of the
 // darkest) and frames just beyond: one hot pixel anywhere, in the vectorised
-// blocks of 64 pixels or in the remainder after them (97 x 5 = 7 x 64 + 37).
+// blocks of 1024 and 64 pixels or in the remainder after them
+// (97 x 13 = 1024 + 3 x 64 + 45).
 TEST(FindHotRegions, OneWarmPixelAnywhereIsFoundOnlyBeyondTheKelvinFloor) {
-  constexpr int kWidth = 97, kHeight = 5;
-  for (const int where : {0, 63, 64, 300, 447, 448, kWidth * kHeight - 1}) {
+  constexpr int kWidth = 97, kHeight = 13;
+  for (const int where : {0, 63, 64, 1023, 1024, 1100, 1215, 1216, kWidth * kHeight - 1}) {
     for (const int darkest : {35, 40}) {
       CameraFrame frame;
       frame.width_px = kWidth;
