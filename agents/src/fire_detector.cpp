@@ -59,6 +59,16 @@ FireDetector::FireDetector(FireDetectorConfig config) : config_(config) {
 
 std::vector<FireDetection> FireDetector::Process(double time_s, const CameraFrame& frame,
                                                  const ObserverPose& pose) {
+  return Process(time_s, frame, [&pose] { return pose; });
+}
+
+std::vector<FireDetection> FireDetector::Process(
+    double time_s, const CameraFrame& frame, const std::function<ObserverPose()>& pose_at_frame) {
+  std::optional<ObserverPose> pose_once;
+  const auto pose = [&]() -> const ObserverPose& {
+    if (!pose_once) pose_once = pose_at_frame();
+    return *pose_once;
+  };
   if (!std::isfinite(time_s) || (last_time_s_ && time_s < *last_time_s_)) {
     Reject("time_s", time_s, "must be finite and not before the previous frame's");
   }
@@ -78,7 +88,8 @@ std::vector<FireDetection> FireDetector::Process(double time_s, const CameraFram
 
   hit_this_frame_.clear();
   for (const HotRegion* region : fires) {
-    const std::optional<GroundFix> ground = GeolocatePixel(pose, region->centroid, config_.sigmas);
+    const std::optional<GroundFix> ground =
+        GeolocatePixel(pose(), region->centroid, config_.sigmas);
     if (!ground) continue;  // above the horizon: no ground position
     if (!anchor_) anchor_.emplace(ground->position);
     const common::EastNorth local = anchor_->ToLocal(ground->position);
@@ -105,7 +116,7 @@ std::vector<FireDetection> FireDetector::Process(double time_s, const CameraFram
   for (Candidate& candidate : candidates_) {
     if (candidate.last_frame != frame_ && !PassEnded(candidate)) continue;
     if (!DueForReport(candidate, time_s)) continue;
-    detections.push_back(Report(candidate, time_s, pose));
+    detections.push_back(Report(candidate, time_s, pose()));
     candidate.reported = true;
     candidate.reported_this_streak = true;
     candidate.last_report_s = time_s;

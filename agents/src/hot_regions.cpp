@@ -4,9 +4,11 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <span>
 #include <sstream>
 #include <stdexcept>
 #include <string_view>
+#include <utility>
 
 namespace fireswarm::agents {
 namespace {
@@ -93,6 +95,57 @@ int MadGrey(const Histogram& histogram, int count, int median) {
   return kGreyLevels - 1;
 }
 
+// A saturated pixel reads the range top, which quantisation and float
+// rounding may leave a fraction of a grey level under the sensor's limit.
+double FireLevelC(const CameraFrame& frame, const DetectorConfig& config) {
+  return std::min(config.min_fire_temperature_c, config.saturation_c - 0.5 * KelvinPerGrey(frame));
+}
+
+// Folds the pixels from `start` on, in whole blocks of kBlock, into the darkest
+// and brightest grey level; returns where the blocks end. A loop of fixed length
+// with scalar accumulators: GCC vectorises it at -O2 (its cheap cost model takes
+// no loop of unknown length), and reduces the vectors once per block.
+template <std::size_t kBlock>
+std::size_t FoldGreyRange(std::span<const std::uint8_t> pixels, std::size_t start, std::uint8_t& lo,
+                          std::uint8_t& hi) {
+  std::size_t i = start;
+  for (; i + kBlock <= pixels.size(); i += kBlock) {
+    const std::uint8_t* block = pixels.data() + i;
+    for (std::size_t k = 0; k < kBlock; ++k) {
+      lo = std::min(lo, block[k]);
+      hi = std::max(hi, block[k]);
+    }
+  }
+  return i;
+}
+
+// The darkest and brightest grey level of the frame: long blocks first (a seed
+// frame is six of them), short ones for the rest, then pixel by pixel.
+std::pair<int, int> GreyRangeOf(std::span<const std::uint8_t> pixels) {
+  std::uint8_t lo = 255;
+  std::uint8_t hi = 0;
+  std::size_t i = FoldGreyRange<1024>(pixels, 0, lo, hi);
+  i = FoldGreyRange<64>(pixels, i, lo, hi);
+  for (; i < pixels.size(); ++i) {
+    lo = std::min(lo, pixels[i]);
+    hi = std::max(hi, pixels[i]);
+  }
+  return {lo, hi};
+}
+
+// True when no pixel can be hot, whatever the histogram says: the background
+// (the median) is at least the darkest pixel, so the relative threshold is at
+// least min_excess_k above it; the brightest pixel reaching neither that nor
+// the fire level leaves every pixel cold. Float rounding is monotonic, so this
+// holds bit for bit against BackgroundOf's threshold. Plain ground, most
+// frames, is settled here without the histogram.
+bool SurelyCold(const CameraFrame& frame, const DetectorConfig& config) {
+  const auto [min_grey, max_grey] = GreyRangeOf(frame.pixels);
+  const double max_c = TemperatureOf(frame, max_grey);
+  return max_c <= TemperatureOf(frame, min_grey) + config.min_excess_k &&
+         max_c < FireLevelC(frame, config);
+}
+
 FrameBackground BackgroundOf(const CameraFrame& frame, const DetectorConfig& config,
                              const Histogram& histogram) {
   const int count = frame.width_px * frame.height_px;
@@ -102,10 +155,7 @@ FrameBackground BackgroundOf(const CameraFrame& frame, const DetectorConfig& con
   background.noise_k = kMadToSigma * MadGrey(histogram, count, median) * KelvinPerGrey(frame);
   background.hot_above_c = background.background_c +
                            std::max(config.noise_sigmas * background.noise_k, config.min_excess_k);
-  // A saturated pixel reads the range top, which quantisation and float
-  // rounding may leave a fraction of a grey level under the sensor's limit.
-  background.fire_level_c =
-      std::min(config.min_fire_temperature_c, config.saturation_c - 0.5 * KelvinPerGrey(frame));
+  background.fire_level_c = FireLevelC(frame, config);
   return background;
 }
 
@@ -182,6 +232,7 @@ FrameBackground EstimateBackground(const CameraFrame& frame, const DetectorConfi
 
 std::vector<HotRegion> FindHotRegions(const CameraFrame& frame, const DetectorConfig& config) {
   ValidateFrame(frame);
+  if (SurelyCold(frame, config)) return {};  // the usual frame: plain ground
   const Histogram histogram = HistogramOf(frame);
   const FrameBackground background = BackgroundOf(frame, config, histogram);
 

@@ -40,7 +40,7 @@ void StateEstimator::Update(Nanos now, const SensorInputs& inputs) {
     estimate_.velocity_north_mps = gps.velocity_north_mps;
     last_fix_ = now;
   }
-  if (estimate_.has_position) estimate_.position = frame_->ToGeodetic(estimate_.position_local);
+  position_.reset();
   estimate_.gps_age_s = last_fix_ ? common::ToSeconds(now - *last_fix_) : 0.0;
 
   if (inputs.baro) {
@@ -69,6 +69,12 @@ void StateEstimator::Update(Nanos now, const SensorInputs& inputs) {
     estimate_.battery_v = inputs.battery->voltage_v;
     estimate_.battery_fraction = inputs.battery->fraction;
   }
+}
+
+common::LatLon StateEstimator::position() const {
+  if (!estimate_.has_position) return {};
+  if (!position_) position_ = frame_->ToGeodetic(estimate_.position_local);
+  return *position_;
 }
 
 void StateEstimator::ZeroAltitude() {

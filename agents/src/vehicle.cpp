@@ -132,15 +132,20 @@ void Vehicle::ProcessFrame(Nanos now, const CameraFrame& frame) {
       state.altitude_m < kMinDetectionAltitudeM) {
     return;
   }
-  ObserverPose pose;
-  pose.position = state.position;
-  pose.altitude_m = state.altitude_m;
-  pose.roll_rad = state.attitude.roll_rad;
-  pose.pitch_rad = state.attitude.pitch_rad;
-  pose.heading_rad = state.attitude.heading_rad;
-  pose.camera = GeometryOf(config_.camera, Param(ParamId::kCameraPitchDeg));
+  // The pose only for frames that need one (most are plain ground).
+  const auto pose_at_frame = [&] {
+    ObserverPose pose;
+    pose.position = estimator_.position();
+    pose.altitude_m = state.altitude_m;
+    pose.roll_rad = state.attitude.roll_rad;
+    pose.pitch_rad = state.attitude.pitch_rad;
+    pose.heading_rad = state.attitude.heading_rad;
+    pose.camera = GeometryOf(config_.camera, Param(ParamId::kCameraPitchDeg));
+    return pose;
+  };
   ++stats_.frames_processed;
-  for (const FireDetection& detection : detector_.Process(common::ToSeconds(now), frame, pose)) {
+  for (const FireDetection& detection :
+       detector_.Process(common::ToSeconds(now), frame, pose_at_frame)) {
     radio::FireReport report;
     report.time_ms = static_cast<std::uint32_t>(std::lround(detection.time_s * 1000.0));
     report.lat_deg = detection.position.lat_deg;
@@ -164,8 +169,9 @@ void Vehicle::UpdateTelemetry(Nanos now) {
   radio::Telemetry telemetry;
   telemetry.time_ms = static_cast<std::uint32_t>(
       std::chrono::duration_cast<std::chrono::milliseconds>(now).count());
-  telemetry.lat_deg = state.position.lat_deg;
-  telemetry.lon_deg = state.position.lon_deg;
+  const common::LatLon position = estimator_.position();
+  telemetry.lat_deg = position.lat_deg;
+  telemetry.lon_deg = position.lon_deg;
   telemetry.altitude_m = state.altitude_m;
   telemetry.velocity_north_mps = state.velocity_north_mps;
   telemetry.velocity_east_mps = state.velocity_east_mps;

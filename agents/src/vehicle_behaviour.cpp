@@ -54,7 +54,7 @@ bool Vehicle::Airborne() const {
 NavigationInput Vehicle::NavInput() const {
   const Estimate& state = estimator_.estimate();
   NavigationInput input;
-  input.position = state.position;
+  input.position = estimator_.position();
   input.position_local = state.position_local;
   input.velocity_east_mps = state.velocity_east_mps;
   input.velocity_north_mps = state.velocity_north_mps;
@@ -63,12 +63,12 @@ NavigationInput Vehicle::NavInput() const {
 }
 
 void Vehicle::StartRoute(std::vector<RoutePoint> route, std::size_t start_index) {
-  navigator_->SetRoute(std::move(route), start_index, estimator_.estimate().position);
+  navigator_->SetRoute(std::move(route), start_index, estimator_.position());
 }
 
 void Vehicle::HoldHere(double altitude_m) {
   RoutePoint here;
-  here.position = estimator_.estimate().position;
+  here.position = estimator_.position();
   here.altitude_m = altitude_m;
   StartRoute({here}, 0);
 }
@@ -89,7 +89,7 @@ void Vehicle::EnterMode(FlightMode mode, Nanos now) {
   if (mode_ == FlightMode::kSearch && mode != FlightMode::kSearch && navigator_) {
     if (!rejoining_) {
       resume_index_ = navigator_->waypoint_index();
-      rejoin_at_ = state.position;
+      rejoin_at_ = estimator_.position();
     }
     rejoining_ = false;
   }
@@ -97,7 +97,7 @@ void Vehicle::EnterMode(FlightMode mode, Nanos now) {
   mode_since_ = now;
   switch (mode) {
     case FlightMode::kTakeoff:
-      home_ = state.position;
+      home_ = estimator_.position();
       estimator_.ZeroAltitude();
       cascade_.Reset();
       navigator_->ResetWindEstimate();
@@ -127,7 +127,7 @@ void Vehicle::EnterMode(FlightMode mode, Nanos now) {
       // At the altitude it was flying to (its mission's return altitude, its
       // layer), never below the take-off altitude.
       RoutePoint home;
-      home.position = home_.value_or(state.position);
+      home.position = home_.value_or(estimator_.position());
       home.altitude_m =
           std::max(navigation_setpoint_.altitude_m, Param(ParamId::kTakeoffAltitudeM));
       StartRoute({home}, 0);
@@ -307,10 +307,14 @@ CascadeSetpoint Vehicle::Behave(Nanos now, std::optional<common::Micros> nav_dt)
       }
       break;
     case FlightMode::kReturnToLaunch: {
-      const common::EastNorth home = estimator_.frame()->ToLocal(home_.value_or(state.position));
+      // How far from home matters only once the navigator holds there (a
+      // projection per physics step otherwise).
+      if (!navigator_->finished()) break;
+      const common::EastNorth home =
+          estimator_.frame()->ToLocal(home_.value_or(estimator_.position()));
       const double distance = std::hypot(home.east_m - state.position_local.east_m,
                                          home.north_m - state.position_local.north_m);
-      if (navigator_->finished() && distance < kHomeReachedM) EnterMode(FlightMode::kLand, now);
+      if (distance < kHomeReachedM) EnterMode(FlightMode::kLand, now);
       break;
     }
     case FlightMode::kLand: {

@@ -255,3 +255,24 @@ std::uint64_t World::StateHash() const {
 }
 
 }  // namespace fireswarm::sim2d
+
+// Box2D 2.4.1 times every b2World::Step for its b2Profile (the step, collide,
+// solve and TOI phases, and three phases of every island: each vehicle is an
+// island of its own) with b2Timer, which on Linux calls gettimeofday twice per
+// measurement: about fifty clock reads per World::Step with ten vehicles, a
+// tenth of a whole mission's CPU time. fireswarm never reads the profile (and
+// a wall clock has no place in a deterministic core), so these definitions
+// replace the library's timer with the one Box2D itself compiles on platforms
+// without a clock (b2_timer.cpp's last branch): no clock read, 0 ms.
+//
+// They take effect by ELF symbol interposition: libbox2d.so calls its timer
+// through the PLT, and a definition in the executable comes first. They live
+// in this file because it is the one that creates the b2World, so every
+// program that steps one links them. Linked statically, Box2D would report a
+// duplicate definition instead of silently keeping its own timer.
+// tests/sim2d/world_test.cpp checks that they are the ones in use.
+b2Timer::b2Timer() = default;
+void b2Timer::Reset() {}
+float b2Timer::GetMilliseconds() const {
+  return 0.0F;
+}

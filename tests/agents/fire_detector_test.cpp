@@ -88,6 +88,41 @@ TEST(FireDetector, ReportsAFireOnceWithinAFewMetresOfTruth) {
   }
 }
 
+// The pose given lazily: asked for only on frames with fire in view (or a pass
+// ending), once per frame, and the reports are those of the plain pose.
+TEST(FireDetector, AsksForThePoseOnlyWhenAFrameNeedsIt) {
+  const common::CameraModel& model = common::CameraModelByName("seed");
+  ThermalScene scene;
+  LightOneCell(scene);
+  Flight plain(model);
+  Flight lazy(model);
+  int frames_with_pose = 0;
+  constexpr int kFrames = 270;
+  for (int k = 0; k <= kFrames; ++k) {
+    const double t = 1.0 + k / kFrameRateHz;
+    const sim2d::VehicleTruth v = testing::Flying({505.0, 350.0 + 10.0 * (t - 1.0)}, 100.0);
+    plain.Frame(scene, v, t);
+    lazy.camera.Render(v, scene.field, t, lazy.rng, lazy.image);
+    int asked = 0;
+    const std::vector<FireDetection> found =
+        lazy.detector.Process(t, testing::FrameOf(lazy.image), [&] {
+          ++asked;
+          return testing::PoseOf(v, lazy.camera, scene.geo);
+        });
+    lazy.reports.insert(lazy.reports.end(), found.begin(), found.end());
+    EXPECT_LE(asked, 1);
+    frames_with_pose += asked;
+  }
+  ASSERT_EQ(plain.reports.size(), 1U);
+  ASSERT_EQ(lazy.reports.size(), 1U);
+  EXPECT_EQ(lazy.reports.front().position.lat_deg, plain.reports.front().position.lat_deg);
+  EXPECT_EQ(lazy.reports.front().position.lon_deg, plain.reports.front().position.lon_deg);
+  EXPECT_EQ(lazy.reports.front().observer.lat_deg, plain.reports.front().observer.lat_deg);
+  // The fire is in view for a few seconds of the 30 s flown.
+  EXPECT_GT(frames_with_pose, 0);
+  EXPECT_LT(frames_with_pose, kFrames / 2);
+}
+
 TEST(FireDetector, SunHeatedRockIsNeverReported) {
   const std::vector<sim2d::Distractor> rocks = {{Vec2(500.0, 450.0), 8.0, 70.0},
                                                 {Vec2(510.0, 520.0), 3.0, 65.0},

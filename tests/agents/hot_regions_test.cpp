@@ -236,6 +236,43 @@ TEST(FindHotRegions, LabelsEightConnectedRegionsAndDropsSmallOnes) {
   EXPECT_TRUE(FindHotRegions(faint.Frame(), DetectorConfig{}).empty());
 }
 
+// Frames settled without the histogram (every pixel within min_excess_k of the
+// darkest) and frames just beyond: one hot pixel anywhere, in the vectorised
+// blocks of 1024 and 64 pixels or in the remainder after them
+// (97 x 13 = 1024 + 3 x 64 + 45).
+TEST(FindHotRegions, OneWarmPixelAnywhereIsFoundOnlyBeyondTheKelvinFloor) {
+  constexpr int kWidth = 97, kHeight = 13;
+  for (const int where : {0, 63, 64, 1023, 1024, 1100, 1215, 1216, kWidth * kHeight - 1}) {
+    for (const int darkest : {35, 40}) {
+      CameraFrame frame;
+      frame.width_px = kWidth;
+      frame.height_px = kHeight;
+      frame.range_min_c = 0.0;
+      frame.range_max_c = 255.0;  // 1 K per grey level
+      std::vector<std::uint8_t> pixels(kWidth * kHeight, 40);
+      pixels[static_cast<std::size_t>((where + 7) % (kWidth * kHeight))] =
+          static_cast<std::uint8_t>(darkest);
+      frame.pixels = pixels;
+      // Background 40 C, threshold 50 C: 10 K over is not hot, 11 K over is.
+      for (const int grey : {45, 50, 51, 200}) {
+        pixels[static_cast<std::size_t>(where)] = static_cast<std::uint8_t>(grey);
+        frame.pixels = pixels;
+        const std::vector<HotRegion> regions = FindHotRegions(frame, DetectorConfig{});
+        SCOPED_TRACE("pixel " + std::to_string(where) + ", grey " + std::to_string(grey) +
+                     ", darkest " + std::to_string(darkest));
+        if (grey <= 50) {
+          EXPECT_TRUE(regions.empty());
+        } else {
+          ASSERT_EQ(regions.size(), 1U);
+          EXPECT_EQ(regions.front().pixel_count, 1);
+          EXPECT_DOUBLE_EQ(regions.front().peak_temperature_c, grey);
+          EXPECT_EQ(regions.front().is_fire, grey >= 150);
+        }
+      }
+    }
+  }
+}
+
 TEST(FindHotRegions, RejectsAMalformedFrame) {
   SyntheticFrame s;
   CameraFrame frame = s.Frame();

@@ -55,8 +55,8 @@ TEST(StateEstimator, LocalFrameIsSetAtTheFirstFix) {
   EXPECT_TRUE(estimate.has_position);
   EXPECT_NEAR(estimate.position_local.east_m, 0.0, kEstimateTolerance);
   EXPECT_NEAR(estimate.position_local.north_m, 0.0, kEstimateTolerance);
-  EXPECT_NEAR(estimate.position.lat_deg, kLaunch.lat_deg, 1e-9);
-  EXPECT_NEAR(estimate.position.lon_deg, kLaunch.lon_deg, 1e-9);
+  EXPECT_NEAR(estimator.position().lat_deg, kLaunch.lat_deg, 1e-9);
+  EXPECT_NEAR(estimator.position().lon_deg, kLaunch.lon_deg, 1e-9);
 
   // A later fix elsewhere does not move the origin.
   const LatLon elsewhere = LocalFrame(kLaunch).ToGeodetic({300.0, -200.0});
@@ -76,9 +76,15 @@ TEST(StateEstimator, DeadReckonsWithTheGpsVelocityBetweenFixes) {
   EXPECT_NEAR(estimate.velocity_north_mps, -1.0, kEstimateTolerance);
   EXPECT_NEAR(estimate.gps_age_s, 0.5, kEstimateTolerance);
   // The geodetic position follows the local one.
-  const EastNorth back = estimator.frame()->ToLocal(estimate.position);
+  const EastNorth back = estimator.frame()->ToLocal(estimator.position());
   EXPECT_NEAR(back.east_m, 1.0, 1e-3);
   EXPECT_NEAR(back.north_m, -0.5, 1e-3);
+  // ... also after the next update (position() is converted on demand and kept
+  // only until then).
+  estimator.Update(Nanos{milliseconds{1000}}, {});
+  const EastNorth later = estimator.frame()->ToLocal(estimator.position());
+  EXPECT_NEAR(later.east_m, 2.0, 1e-3);
+  EXPECT_NEAR(later.north_m, -1.0, 1e-3);
 
   estimator.Update(Nanos{milliseconds{1'500}}, {});
   EXPECT_NEAR(estimator.estimate().position_local.east_m, 3.0, kEstimateTolerance);

@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -86,6 +87,12 @@ class FireDetector {
   /// the mean navigation part plus the mean pixel part divided by the fixes.
   std::vector<FireDetection> Process(double time_s, const CameraFrame& frame,
                                      const ObserverPose& pose);
+  /// The same, with the pose asked of `pose_at_frame` only when the frame needs
+  /// it (a fire region to locate, or a candidate to report), at most once: a
+  /// vehicle's pose costs a projection to latitude and longitude, and most
+  /// frames are plain ground.
+  std::vector<FireDetection> Process(double time_s, const CameraFrame& frame,
+                                     const std::function<ObserverPose()>& pose_at_frame);
 
   const FireDetectorConfig& config() const { return config_; }
   /// Candidates currently tracked (confirmed or not).

@@ -15,9 +15,10 @@ namespace fireswarm::agents {
 using common::Nanos;
 
 struct Estimate {
-  bool has_position = false;         ///< a GPS fix has arrived
-  common::LatLon position;           ///< dead-reckoned to the last Update
-  common::EastNorth position_local;  ///< the same, in frame()
+  bool has_position = false;  ///< a GPS fix has arrived
+  /// Dead-reckoned to the last Update, in frame(); StateEstimator::position()
+  /// gives it as latitude and longitude.
+  common::EastNorth position_local;
   double velocity_east_mps = 0.0;
   double velocity_north_mps = 0.0;
   bool has_altitude = false;
@@ -39,11 +40,17 @@ class StateEstimator {
   void ZeroAltitude();
 
   const Estimate& estimate() const { return estimate_; }
+  /// estimate().position_local as WGS84 latitude and longitude (0, 0 before the
+  /// first fix). Converted on demand and kept until the next Update: the
+  /// projection costs more than the rest of an update, and the vehicle reads
+  /// latitude and longitude only at its navigation and telemetry rates.
+  common::LatLon position() const;
   /// Set after the first GPS fix; positions in Estimate are in this frame.
   const std::optional<common::LocalFrame>& frame() const { return frame_; }
 
  private:
   Estimate estimate_;
+  mutable std::optional<common::LatLon> position_;  // position() since the last Update
   std::optional<common::LocalFrame> frame_;
   std::optional<Nanos> last_update_;
   std::optional<Nanos> last_fix_;
