@@ -20,6 +20,39 @@ struct Loads {
   }
 };
 
+// Swaps a unit of the slowest drone with a shorter one of another drone (same
+// sortie counts, so no swap time changes) when that lowers the larger of the two.
+bool SwapOffSlowest(const std::vector<std::vector<double>>& t,
+                    const std::vector<std::size_t>& drone_site, std::size_t slowest,
+                    double endurance_s, Loads& loads, std::vector<std::size_t>& owner) {
+  const double top_s = loads.seconds[slowest];
+  double best_top_s = top_s - kGainS;
+  std::size_t best_a = owner.size(), best_b = owner.size();
+  for (std::size_t a = 0; a < owner.size(); ++a) {
+    if (owner[a] != slowest) continue;
+    for (std::size_t b = 0; b < owner.size(); ++b) {
+      const std::size_t other = owner[b];
+      if (other == slowest) continue;
+      const double a_there = t[a][drone_site[other]], b_here = t[b][drone_site[slowest]];
+      if (a_there > endurance_s || b_here > endurance_s) continue;
+      const double here_s = top_s - t[a][drone_site[slowest]] + b_here;
+      const double there_s = loads.seconds[other] - t[b][drone_site[other]] + a_there;
+      const double new_top_s = std::max(here_s, there_s);
+      if (new_top_s < best_top_s) {
+        best_top_s = new_top_s;
+        best_a = a;
+        best_b = b;
+      }
+    }
+  }
+  if (best_a == owner.size()) return false;
+  const std::size_t other = owner[best_b];
+  loads.seconds[slowest] += t[best_b][drone_site[slowest]] - t[best_a][drone_site[slowest]];
+  loads.seconds[other] += t[best_a][drone_site[other]] - t[best_b][drone_site[other]];
+  std::swap(owner[best_a], owner[best_b]);
+  return true;
+}
+
 std::optional<Assignment> Greedy(const std::vector<std::vector<double>>& t,
                                  const std::vector<std::size_t>& drone_site, double endurance_s,
                                  double swap_s) {
@@ -75,7 +108,10 @@ std::optional<Assignment> Greedy(const std::vector<std::vector<double>>& t,
         }
       }
     }
-    if (move_u == units) break;
+    if (move_u == units) {
+      if (SwapOffSlowest(t, drone_site, slowest, endurance_s, loads, owner)) continue;
+      break;
+    }
     loads.seconds[slowest] -=
         t[move_u][drone_site[slowest]] + (loads.sorties[slowest] > 1 ? swap_s : 0.0);
     --loads.sorties[slowest];
