@@ -5,9 +5,12 @@
 
 #include <boost/geometry.hpp>
 #include <cmath>
+#include <cstdio>
 #include <functional>
 #include <stdexcept>
+#include <string>
 
+#include "fireswarm/planner/area_io.hpp"
 #include "fireswarm/planner/footprint.hpp"
 #include "fireswarm/planner/plan.hpp"
 #include "planner_test_helpers.hpp"
@@ -115,6 +118,32 @@ TEST(LargeAreaPlan, RefusesAPointOutOfReachNamingItAndAcceptsWithASiteNearIt) {
   const Plan plan = PlanSearch(area, fleet);
   EXPECT_GE(plan.coverage, 0.995);
   EXPECT_NE(plan.drones[0].site, plan.drones[1].site);
+}
+
+// Thayatal's ragged valley (OSM): every sortie's ground is a few pieces at most,
+// not the dozens of strips a route cut into shares gave. Its own separate parts
+// (a MultiPolygon) and the bays a block crosses are what splits a sortie.
+TEST(LargeAreaPlan, SortiesOnARaggedBoundaryAreFewPieces) {
+  const SearchArea area = LoadSearchArea(std::string(FIRESWARM_OSM_AREAS) + "/thayatal.geojson");
+  FleetSpec fleet = Fleet(10, DefaultLaunchPoint(area));
+  fleet.altitude_m = 100.0;
+  fleet.speed_mps = 12.0;
+  fleet.endurance_s = 2'400;
+  const Plan plan = PlanSearch(area, fleet);
+  std::size_t sorties = 0, pieces = 0, single = 0;
+  for (const DronePlan& drone : plan.drones) {
+    ASSERT_EQ(drone.sortie_regions.size(), static_cast<std::size_t>(drone.sorties));
+    for (const MultiPolygon& region : drone.sortie_regions) {
+      ++sorties;
+      pieces += region.size();
+      single += region.size() == 1 ? 1U : 0U;
+      EXPECT_LE(region.size(), 4U) << "drone " << drone.receiver_id;
+    }
+  }
+  std::printf("[ figures  ] thayatal, 10 drones: %zu sorties, %zu pieces, %zu in one piece\n",
+              sorties, pieces, single);
+  EXPECT_LE(static_cast<double>(pieces) / static_cast<double>(sorties), 2.0);
+  EXPECT_GE(plan.coverage, 0.995);
 }
 
 // A strip one lane wide from a site at its west end: any plan flies sorties out to
