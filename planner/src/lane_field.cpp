@@ -32,7 +32,9 @@ bool ClippedRange(const Edge& e, double y_lo, double y_hi, Span& out) {
   return true;
 }
 
-std::vector<Span> Merged(std::vector<Span> spans, double gap_m) {
+}  // namespace
+
+std::vector<Span> MergedSpans(std::vector<Span> spans, double gap_m) {
   std::sort(spans.begin(), spans.end(),
             [](const Span& a, const Span& b) { return a.lo_m < b.lo_m; });
   std::vector<Span> out;
@@ -45,8 +47,6 @@ std::vector<Span> Merged(std::vector<Span> spans, double gap_m) {
   }
   return out;
 }
-
-}  // namespace
 
 LaneField BuildLaneField(const MultiPolygon& region, double direction_rad, double sweep_width_m,
                          double merge_gap_m) {
@@ -93,7 +93,7 @@ LaneField BuildLaneField(const MultiPolygon& region, double direction_rad, doubl
       Span s;
       if (ClippedRange(edges[i], y_lo, y_hi, s)) spans.push_back(s);
     }
-    row.spans = Merged(std::move(spans), merge_gap_m);
+    row.spans = MergedSpans(std::move(spans), merge_gap_m);
     field.rows.push_back(std::move(row));
   }
   return field;

@@ -17,6 +17,9 @@ struct Span {
   double hi_m = 0.0;
 };
 
+/// `spans` sorted and united where they overlap or lie less than `gap_m` apart.
+std::vector<Span> MergedSpans(std::vector<Span> spans, double gap_m);
+
 /// One lane line and what of it must be flown.
 struct LaneRow {
   double y_m = 0.0;         ///< the line, lane frame

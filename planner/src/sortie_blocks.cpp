@@ -37,17 +37,7 @@ std::vector<Span> StripePieces(const LaneField& field, std::size_t first, std::s
   for (std::size_t r = first; r < end; ++r) {
     spans.insert(spans.end(), field.rows[r].spans.begin(), field.rows[r].spans.end());
   }
-  std::sort(spans.begin(), spans.end(),
-            [](const Span& a, const Span& b) { return a.lo_m < b.lo_m; });
-  std::vector<Span> pieces;
-  for (const Span& s : spans) {
-    if (!pieces.empty() && s.lo_m <= pieces.back().hi_m + gap_m) {
-      pieces.back().hi_m = std::max(pieces.back().hi_m, s.hi_m);
-    } else {
-      pieces.push_back(s);
-    }
-  }
-  return pieces;
+  return MergedSpans(std::move(spans), gap_m);
 }
 
 double NearestSiteSortieS(const SortieUnit& unit, const std::vector<Point>& sites,
