@@ -18,6 +18,51 @@ constexpr double kLaunchSiteM = 1.0;
 
 }  // namespace
 
+std::size_t SortieCount(const DroneMission& mission) {
+  return mission.sortie_starts.size() + 1;
+}
+
+std::pair<std::size_t, std::size_t> SortieRange(const DroneMission& mission, std::size_t sortie) {
+  const std::size_t count = SortieCount(mission);
+  if (sortie >= count) {
+    throw std::out_of_range("vehicle " + std::to_string(mission.vehicle) + " has no sortie " +
+                            std::to_string(sortie + 1) + " (it has " + std::to_string(count) + ")");
+  }
+  const std::size_t first = sortie == 0 ? 0 : mission.sortie_starts[sortie - 1];
+  const std::size_t end =
+      sortie + 1 < count ? mission.sortie_starts[sortie] : mission.waypoints.size();
+  return {first, end};
+}
+
+std::uint16_t SortieMissionId(const DroneMission& mission, std::size_t sortie) {
+  return static_cast<std::uint16_t>(mission.mission_id + sortie);
+}
+
+std::size_t SortieOf(const DroneMission& mission, std::size_t waypoint) {
+  return static_cast<std::size_t>(std::ranges::upper_bound(mission.sortie_starts, waypoint) -
+                                  mission.sortie_starts.begin());
+}
+
+std::vector<std::vector<radio::Waypoint>> SortiesOf(const DroneMission& mission) {
+  std::vector<std::vector<radio::Waypoint>> sorties;
+  for (std::size_t k = 0; k < SortieCount(mission); ++k) {
+    const auto [first, end] = SortieRange(mission, k);
+    sorties.emplace_back(mission.waypoints.begin() + static_cast<std::ptrdiff_t>(first),
+                         mission.waypoints.begin() + static_cast<std::ptrdiff_t>(end));
+  }
+  return sorties;
+}
+
+void SetSorties(DroneMission& mission, const std::vector<std::vector<radio::Waypoint>>& sorties) {
+  mission.waypoints.clear();
+  mission.sortie_starts.clear();
+  for (const std::vector<radio::Waypoint>& sortie : sorties) {
+    if (sortie.empty()) continue;
+    if (!mission.waypoints.empty()) mission.sortie_starts.push_back(mission.waypoints.size());
+    mission.waypoints.insert(mission.waypoints.end(), sortie.begin(), sortie.end());
+  }
+}
+
 std::vector<DroneMission> ToDroneMissions(const planner::Plan& plan, std::uint16_t mission_id,
                                           double altitude_m, double speed_mps) {
   std::vector<DroneMission> missions;
@@ -26,16 +71,11 @@ std::vector<DroneMission> ToDroneMissions(const planner::Plan& plan, std::uint16
       throw std::invalid_argument("receiver ID " + std::to_string(drone.receiver_id) +
                                   " is outside 1..254");
     }
-    if (drone.waypoints.size() > radio::kMaxMissionWaypoints) {
-      throw std::invalid_argument("drone " + std::to_string(drone.receiver_id) + " has " +
-                                  std::to_string(drone.waypoints.size()) +
-                                  " waypoints; a mission holds at most " +
-                                  std::to_string(radio::kMaxMissionWaypoints));
-    }
     DroneMission mission;
     mission.vehicle = static_cast<std::uint8_t>(drone.receiver_id);
     mission.mission_id = mission_id;
-    for (const planner::Waypoint& point : drone.waypoints) {
+    for (std::size_t i = 0; i < drone.waypoints.size(); ++i) {
+      const planner::Waypoint& point = drone.waypoints[i];
       radio::Waypoint waypoint;
       waypoint.lat_deg = point.geodetic.lat_deg;
       waypoint.lon_deg = point.geodetic.lon_deg;
@@ -43,8 +83,46 @@ std::vector<DroneMission> ToDroneMissions(const planner::Plan& plan, std::uint16
       waypoint.speed_mps = speed_mps;
       waypoint.flags = point.starts_lane ? radio::Waypoint::kLaneStart : std::uint8_t{0};
       mission.waypoints.push_back(waypoint);
+      // The landing that ends a sortie is its last waypoint; the next sortie
+      // starts after it.
+      if (point.is_return && i + 1 < drone.waypoints.size()) {
+        mission.sortie_starts.push_back(mission.waypoints.size());
+      }
+    }
+    for (std::size_t k = 0; k < SortieCount(mission); ++k) {
+      const auto [first, end] = SortieRange(mission, k);
+      if (end - first > radio::kMaxMissionWaypoints) {
+        throw std::invalid_argument("drone " + std::to_string(drone.receiver_id) + " has " +
+                                    std::to_string(end - first) + " waypoints in sortie " +
+                                    std::to_string(k + 1) + "; a mission holds at most " +
+                                    std::to_string(radio::kMaxMissionWaypoints));
+      }
     }
     missions.push_back(std::move(mission));
+  }
+  return missions;
+}
+
+std::vector<DroneMission> WithoutLaunchSite(
+    std::vector<DroneMission> missions, const common::LocalFrame& frame,
+    const std::map<std::uint8_t, common::EastNorth>& launch_of) {
+  for (DroneMission& mission : missions) {
+    const auto site = launch_of.find(mission.vehicle);
+    if (site == launch_of.end()) continue;
+    const common::EastNorth launch = site->second;
+    const auto at_launch = [&](const radio::Waypoint& waypoint) {
+      const common::EastNorth local = frame.ToLocal({waypoint.lat_deg, waypoint.lon_deg});
+      return std::hypot(local.east_m - launch.east_m, local.north_m - launch.north_m) <
+             kLaunchSiteM;
+    };
+    std::vector<std::vector<radio::Waypoint>> sorties = SortiesOf(mission);
+    for (std::vector<radio::Waypoint>& route : sorties) {
+      while (route.size() > 1 && at_launch(route.back())) route.pop_back();
+      std::size_t first = 0;
+      while (first + 1 < route.size() && at_launch(route[first])) ++first;
+      route.erase(route.begin(), route.begin() + static_cast<std::ptrdiff_t>(first));
+    }
+    SetSorties(mission, sorties);
   }
   return missions;
 }
@@ -52,18 +130,17 @@ std::vector<DroneMission> ToDroneMissions(const planner::Plan& plan, std::uint16
 std::vector<DroneMission> WithoutLaunchSite(std::vector<DroneMission> missions,
                                             const common::LocalFrame& frame,
                                             common::EastNorth launch) {
-  const auto at_launch = [&](const radio::Waypoint& waypoint) {
-    const common::EastNorth local = frame.ToLocal({waypoint.lat_deg, waypoint.lon_deg});
-    return std::hypot(local.east_m - launch.east_m, local.north_m - launch.north_m) < kLaunchSiteM;
-  };
-  for (DroneMission& mission : missions) {
-    std::vector<radio::Waypoint>& route = mission.waypoints;
-    while (route.size() > 1 && at_launch(route.back())) route.pop_back();
-    std::size_t first = 0;
-    while (first + 1 < route.size() && at_launch(route[first])) ++first;
-    route.erase(route.begin(), route.begin() + static_cast<std::ptrdiff_t>(first));
+  std::map<std::uint8_t, common::EastNorth> launch_of;
+  for (const DroneMission& mission : missions) launch_of[mission.vehicle] = launch;
+  return WithoutLaunchSite(std::move(missions), frame, launch_of);
+}
+
+std::map<std::uint8_t, common::EastNorth> LaunchSitesOf(const planner::Plan& plan) {
+  std::map<std::uint8_t, common::EastNorth> sites;
+  for (const planner::DronePlan& drone : plan.drones) {
+    sites[static_cast<std::uint8_t>(drone.receiver_id)] = {drone.launch.x(), drone.launch.y()};
   }
-  return missions;
+  return sites;
 }
 
 const char* ToString(DronePhase phase) {
@@ -78,6 +155,8 @@ const char* ToString(DronePhase phase) {
       return "done";
     case DronePhase::kFailed:
       return "failed";
+    case DronePhase::kSwapping:
+      return "swapping";
   }
   return "unknown";
 }
@@ -98,12 +177,25 @@ MissionManager::MissionManager(radio::MasterScheduler& scheduler,
 
 MissionManager::Drone MissionManager::DroneFor(DroneMission mission) {
   Drone drone;
-  drone.chunks = radio::SplitMission(mission.mission_id, mission.waypoints);
-  drone.chunk_rounds.assign(drone.chunks.size(), 0);
-  drone.progress.chunk_count = drone.chunks.size();
   drone.progress.waypoint_count = mission.waypoints.size();
+  drone.progress.sortie_count = SortieCount(mission);
   drone.mission = std::move(mission);
+  LoadSortie(drone, 0);
   return drone;
+}
+
+void MissionManager::LoadSortie(Drone& drone, std::size_t sortie) {
+  const auto [first, end] = SortieRange(drone.mission, sortie);
+  const std::vector<radio::Waypoint> waypoints(
+      drone.mission.waypoints.begin() + static_cast<std::ptrdiff_t>(first),
+      drone.mission.waypoints.begin() + static_cast<std::ptrdiff_t>(end));
+  drone.chunks = radio::SplitMission(SortieMissionId(drone.mission, sortie), waypoints);
+  drone.chunk_rounds.assign(drone.chunks.size(), 0);
+  drone.progress.sortie = sortie;
+  drone.progress.chunk_count = drone.chunks.size();
+  drone.progress.chunks_acked = 0;
+  drone.progress.start_refusals = 0;
+  drone.progress.waypoint_index = std::max(drone.progress.waypoint_index, first);
 }
 
 void MissionManager::Replace(DroneMission mission, bool send) {
@@ -115,7 +207,9 @@ void MissionManager::Replace(DroneMission mission, bool send) {
   }
   // Answers to the old mission's requests are no longer this drone's business.
   std::erase_if(pending_, [&](const auto& entry) { return entry.second.vehicle == vehicle; });
+  const std::size_t flown = drone.progress.sorties_flown;
   drone = DroneFor(std::move(mission));
+  drone.progress.sorties_flown = flown;
   ++missions_version_;
   if (!send) return;
   for (std::size_t i = 0; i < drone.chunks.size(); ++i) SendChunk(drone, i);
@@ -127,14 +221,36 @@ void MissionManager::MarkLost(std::uint8_t vehicle, std::string why) {
   Fail(drone, std::move(why));
 }
 
-std::vector<radio::Waypoint> MissionManager::Remaining(std::uint8_t vehicle,
-                                                       bool from_leg_start) const {
+std::vector<radio::Waypoint> MissionManager::Remaining(
+    std::uint8_t vehicle, bool from_leg_start, std::vector<std::size_t>* sortie_starts) const {
   const Drone& drone = Find(vehicle);
-  const std::vector<radio::Waypoint>& route = drone.mission.waypoints;
+  const DroneMission& mission = drone.mission;
+  const std::vector<radio::Waypoint>& route = mission.waypoints;
+  if (sortie_starts != nullptr) sortie_starts->clear();
   std::size_t first = drone.progress.waypoint_index;
-  if (from_leg_start && first > 0) --first;
+  std::size_t sortie = drone.progress.sortie;
+  if (drone.progress.phase == DronePhase::kSwapping) {
+    // Its sortie is flown: the next ones are still to fly, whole.
+    if (sortie + 1 >= SortieCount(mission)) return {};
+    first = SortieRange(mission, ++sortie).first;
+  } else if (from_leg_start && first > SortieRange(mission, sortie).first) {
+    --first;
+  }
   if (first >= route.size()) return {};
+  if (sortie_starts != nullptr) {
+    for (std::size_t k = sortie + 1; k < SortieCount(mission); ++k) {
+      sortie_starts->push_back(SortieRange(mission, k).first - first);
+    }
+  }
   return {route.begin() + static_cast<std::ptrdiff_t>(first), route.end()};
+}
+
+std::uint16_t MissionManager::LastMissionId() const {
+  std::uint16_t last = 0;
+  for (const auto& [vehicle, drone] : drones_) {
+    last = std::max(last, SortieMissionId(drone.mission, SortieCount(drone.mission) - 1));
+  }
+  return last;
 }
 
 const DroneMission& MissionManager::mission_of(std::uint8_t vehicle) const {
@@ -170,7 +286,7 @@ void MissionManager::SendChunk(Drone& drone, std::size_t index) {
 void MissionManager::SendStart(Drone& drone) {
   radio::Command start;
   start.type = radio::CommandType::kStartMission;
-  start.mission_id = drone.mission.mission_id;
+  start.mission_id = SortieMissionId(drone.mission, drone.progress.sortie);
   drone.progress.phase = DronePhase::kStarting;
   drone.retry_start_at = common::Nanos::max();
   pending_[scheduler_.SendCommand(drone.mission.vehicle, start)] =
@@ -241,11 +357,54 @@ void MissionManager::OnTelemetry(const radio::TelemetryReceived& received) {
   const auto found = drones_.find(received.vehicle);
   if (found == drones_.end()) return;
   Drone& drone = found->second;
+  DroneProgress& progress = drone.progress;
   const radio::Telemetry& telemetry = received.telemetry;
-  if (telemetry.mission_id != drone.mission.mission_id) return;
-  if (drone.progress.phase != DronePhase::kFlying) return;
-  drone.progress.waypoint_index = std::max(drone.progress.waypoint_index, telemetry.waypoint_index);
-  if (telemetry.mode == radio::FlightMode::kLanded) drone.progress.phase = DronePhase::kDone;
+  if (telemetry.mission_id != SortieMissionId(drone.mission, progress.sortie)) return;
+  if (progress.phase == DronePhase::kSwapping) {
+    const bool fresh = telemetry.mode == radio::FlightMode::kLanded &&
+                       telemetry.battery_percent >= kFreshPackPercent &&
+                       (telemetry.flags & radio::telemetry_flags::kLowBattery) == 0;
+    if (fresh && !sorties_stopped_) StartNextSortie(drone);
+    return;
+  }
+  if (progress.phase != DronePhase::kFlying) return;
+  const auto [first, end] = SortieRange(drone.mission, progress.sortie);
+  progress.waypoint_index = std::max(progress.waypoint_index,
+                                     std::min<std::size_t>(first + telemetry.waypoint_index, end));
+  if (telemetry.mode == radio::FlightMode::kLanded) OnLanded(drone, telemetry);
+}
+
+void MissionManager::OnLanded(Drone& drone, const radio::Telemetry& telemetry) {
+  DroneProgress& progress = drone.progress;
+  DroneMission& mission = drone.mission;
+  const auto [first, end] = SortieRange(mission, progress.sortie);
+  // Sent home by a low battery before its sortie's last waypoint: the rest, from
+  // the leg it was on, becomes a sortie of its own. Only when it got somewhere
+  // (past its sortie's second waypoint), or a pack too small would loop forever.
+  const std::size_t flying_to = first + telemetry.waypoint_index;
+  const bool low_battery = (telemetry.flags & radio::telemetry_flags::kLowBattery) != 0;
+  if (low_battery && flying_to + 1 < end && flying_to >= first + 2) {
+    const auto at = mission.sortie_starts.begin() + static_cast<std::ptrdiff_t>(progress.sortie);
+    mission.sortie_starts.insert(at, flying_to - 1);
+    ++progress.sortie_count;
+    ++missions_version_;
+  }
+  ++progress.sorties_flown;
+  const bool last = progress.sortie + 1 >= SortieCount(mission);
+  progress.phase = last || sorties_stopped_ ? DronePhase::kDone : DronePhase::kSwapping;
+}
+
+void MissionManager::StartNextSortie(Drone& drone) {
+  LoadSortie(drone, drone.progress.sortie + 1);
+  drone.progress.phase = DronePhase::kUploading;
+  for (std::size_t i = 0; i < drone.chunks.size(); ++i) SendChunk(drone, i);
+}
+
+void MissionManager::StopSorties() {
+  sorties_stopped_ = true;
+  for (auto& [vehicle, drone] : drones_) {
+    if (drone.progress.phase == DronePhase::kSwapping) drone.progress.phase = DronePhase::kDone;
+  }
 }
 
 void MissionManager::Step(common::Nanos now) {
@@ -262,8 +421,29 @@ common::Nanos MissionManager::NextWakeup() const {
   return next;
 }
 
-void MissionManager::RestorePhase(std::uint8_t vehicle, DronePhase phase) {
+void MissionManager::RestorePhase(std::uint8_t vehicle, DronePhase phase, std::size_t sortie,
+                                  const std::optional<std::vector<std::size_t>>& sortie_starts) {
   Drone& drone = Find(vehicle);
+  DroneMission& mission = drone.mission;
+  // Sorties cut short made their rests sorties of their own: the journal has
+  // where every sortie begins now.
+  if (sortie_starts && *sortie_starts != mission.sortie_starts) {
+    const bool fits = std::ranges::is_sorted(*sortie_starts) &&
+                      std::ranges::all_of(*sortie_starts, [&](std::size_t start) {
+                        return start > 0 && start < mission.waypoints.size();
+                      });
+    if (!fits) {
+      throw std::invalid_argument("vehicle " + std::to_string(vehicle) +
+                                  ": sortie starts do not fit its route of " +
+                                  std::to_string(mission.waypoints.size()) + " waypoints");
+    }
+    mission.sortie_starts = *sortie_starts;
+    drone.progress.sortie_count = SortieCount(mission);
+    ++missions_version_;
+  }
+  if (sortie != drone.progress.sortie) LoadSortie(drone, sortie);
+  drone.progress.sorties_flown =
+      sortie + (phase == DronePhase::kSwapping || phase == DronePhase::kDone ? 1 : 0);
   drone.progress.phase = phase;
   if (phase != DronePhase::kUploading) drone.progress.chunks_acked = drone.chunks.size();
   drone.retry_start_at = phase == DronePhase::kStarting ? common::Nanos{0} : common::Nanos::max();
