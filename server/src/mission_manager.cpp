@@ -208,9 +208,16 @@ void MissionManager::Replace(DroneMission mission, bool send) {
   // Answers to the old mission's requests are no longer this drone's business.
   std::erase_if(pending_, [&](const auto& entry) { return entry.second.vehicle == vehicle; });
   const std::size_t flown = drone.progress.sorties_flown;
+  const bool swapping = drone.progress.phase == DronePhase::kSwapping;
   drone = DroneFor(std::move(mission));
   drone.progress.sorties_flown = flown;
   ++missions_version_;
+  if (swapping) {
+    // On the ground for its pack: the new mission's first sortie waits for it too.
+    drone.progress.phase = DronePhase::kSwapping;
+    drone.next_sortie = 0;
+    return;
+  }
   if (!send) return;
   for (std::size_t i = 0; i < drone.chunks.size(); ++i) SendChunk(drone, i);
 }
@@ -231,8 +238,9 @@ std::vector<radio::Waypoint> MissionManager::Remaining(
   std::size_t sortie = drone.progress.sortie;
   if (drone.progress.phase == DronePhase::kSwapping) {
     // Its sortie is flown: the next ones are still to fly, whole.
-    if (sortie + 1 >= SortieCount(mission)) return {};
-    first = SortieRange(mission, ++sortie).first;
+    sortie = drone.next_sortie;
+    if (sortie >= SortieCount(mission)) return {};
+    first = SortieRange(mission, sortie).first;
   } else if (from_leg_start && first > SortieRange(mission, sortie).first) {
     --first;
   }
@@ -359,7 +367,8 @@ void MissionManager::OnTelemetry(const radio::TelemetryReceived& received) {
   Drone& drone = found->second;
   DroneProgress& progress = drone.progress;
   const radio::Telemetry& telemetry = received.telemetry;
-  if (telemetry.mission_id != SortieMissionId(drone.mission, progress.sortie)) return;
+  // On the ground for its pack, whatever mission it flew last (one handed over
+  // while it waits has not gone up yet).
   if (progress.phase == DronePhase::kSwapping) {
     const bool fresh = telemetry.mode == radio::FlightMode::kLanded &&
                        telemetry.battery_percent >= kFreshPackPercent &&
@@ -367,6 +376,7 @@ void MissionManager::OnTelemetry(const radio::TelemetryReceived& received) {
     if (fresh && !sorties_stopped_) StartNextSortie(drone);
     return;
   }
+  if (telemetry.mission_id != SortieMissionId(drone.mission, progress.sortie)) return;
   if (progress.phase != DronePhase::kFlying) return;
   const auto [first, end] = SortieRange(drone.mission, progress.sortie);
   progress.waypoint_index = std::max(progress.waypoint_index,
@@ -390,12 +400,13 @@ void MissionManager::OnLanded(Drone& drone, const radio::Telemetry& telemetry) {
     ++missions_version_;
   }
   ++progress.sorties_flown;
+  drone.next_sortie = progress.sortie + 1;
   const bool last = progress.sortie + 1 >= SortieCount(mission);
   progress.phase = last || sorties_stopped_ ? DronePhase::kDone : DronePhase::kSwapping;
 }
 
 void MissionManager::StartNextSortie(Drone& drone) {
-  LoadSortie(drone, drone.progress.sortie + 1);
+  LoadSortie(drone, drone.next_sortie);
   drone.progress.phase = DronePhase::kUploading;
   for (std::size_t i = 0; i < drone.chunks.size(); ++i) SendChunk(drone, i);
 }
@@ -442,6 +453,7 @@ void MissionManager::RestorePhase(std::uint8_t vehicle, DronePhase phase, std::s
     ++missions_version_;
   }
   if (sortie != drone.progress.sortie) LoadSortie(drone, sortie);
+  drone.next_sortie = sortie + 1;
   drone.progress.sorties_flown =
       sortie + (phase == DronePhase::kSwapping || phase == DronePhase::kDone ? 1 : 0);
   drone.progress.phase = phase;

@@ -1,8 +1,11 @@
-// The server's side of a lost drone: when a flying drone has not been heard for
-// the registry's lost time, it is given up and the lanes it had still to fly go
-// to the drones still searching (handover.hpp says how they are shared out), each
-// as a new mission uploaded and started like the first, its joins to the new
-// lanes routed around the no-fly zones. If it is heard again, it is sent home.
+// The server's side of a lost drone: when a flying drone (or one on the ground
+// between sorties) has not been heard for the registry's lost time, it is given
+// up and the lanes it had still to fly, its later sorties' included, go to the
+// drones still searching or waiting for their pack with sorties to fly
+// (handover.hpp says how they are shared out), each as a new mission uploaded
+// and started like the first (after the swap for a drone on the ground), its
+// joins to the new lanes routed around the no-fly zones. If it is heard again,
+// it is sent home.
 #include <string>
 
 #include "fireswarm/server/handover.hpp"
@@ -25,12 +28,18 @@ void Server::HandOverLostDrones(double now_s) {
 std::vector<Taker> Server::TakersFor(std::uint8_t lost, double now_s) const {
   std::vector<Taker> takers;
   for (const std::uint8_t id : mission_->vehicles()) {
-    if (id == lost || mission_->progress(id).phase != DronePhase::kFlying) continue;
-    if (registry_.LinkAt(id, now_s) != LinkState::kOk) continue;
+    if (id == lost || registry_.LinkAt(id, now_s) != LinkState::kOk) continue;
     const std::optional<radio::Telemetry>& telemetry = registry_.state(id).telemetry;
-    if (!telemetry || (telemetry->flags & radio::telemetry_flags::kLowBattery) != 0) continue;
-    if (telemetry->mode != radio::FlightMode::kSearch &&
-        telemetry->mode != radio::FlightMode::kInvestigate) {
+    if (!telemetry) continue;
+    // Searching, or on the ground for its pack with sorties still to fly (the
+    // lanes end its last one; the swap clears a low battery).
+    const DronePhase phase = mission_->progress(id).phase;
+    if (phase == DronePhase::kSwapping) {
+      if (mission_->Remaining(id, /*from_leg_start=*/false).empty()) continue;
+    } else if (phase != DronePhase::kFlying ||
+               (telemetry->flags & radio::telemetry_flags::kLowBattery) != 0 ||
+               (telemetry->mode != radio::FlightMode::kSearch &&
+                telemetry->mode != radio::FlightMode::kInvestigate)) {
       continue;  // returning, landing: its flight is over
     }
     Taker taker;

@@ -179,5 +179,44 @@ TEST(RunScenarioSorties, ARestartedServerResumesAtTheSortieItWasIn) {
   }
 }
 
+// Three drones, two sorties each; vehicle 2 is gone for good at 330 s, while
+// it waits on the ground for its pack after its first sortie (302 - 416 s).
+constexpr const char* kLostBetweenSorties = R"(
+name: sorties_lost
+seed: 5
+duration_s: 2400
+area:
+  polygon: [[7.0, 45.0], [7.010146, 45.0], [7.010146, 45.0045], [7.0, 45.0045]]
+fleet:
+  count: 3
+  launch: {lat: 44.9995, lon: 7.005}
+  endurance_s: 200
+  swap_s: 120
+faults:
+  - {vehicle: 2, at_s: 330, kind: total_loss}
+)";
+
+TEST(RunScenarioSorties, ADroneLostBetweenSortiesLeavesItsLaterSortiesToTheOthers) {
+  std::optional<server::DronePhase> phase_when_lost;
+  RunOptions options;
+  options.on_step = [&](double t_s, const server::Server& server) {
+    if (!phase_when_lost && t_s >= 330.0) phase_when_lost = server.mission()->progress(2).phase;
+  };
+  const RunResult result =
+      RunScenario(ParseScenario(kLostBetweenSorties, "sorties_lost.yaml", "."), options);
+  PrintSortieFigures(result);
+  ASSERT_EQ(phase_when_lost, server::DronePhase::kSwapping) << "the scenario's premise";
+  const Report& report = result.report;
+  EXPECT_EQ(report.vehicles.at(2).final_state, "lost");
+  EXPECT_EQ(report.vehicles.at(2).sorties_flown, 1);
+  for (const int id : {1, 3}) {
+    EXPECT_GE(report.vehicles.at(id).sorties_planned, 2) << "vehicle " << id;
+    EXPECT_GE(report.vehicles.at(id).sorties_flown, report.vehicles.at(id).sorties_planned);
+    EXPECT_EQ(report.vehicles.at(id).final_state, "landed");
+  }
+  // Its second sortie's lanes were flown by the others, after their swaps.
+  EXPECT_GE(report.coverage, 0.99);
+}
+
 }  // namespace
 }  // namespace fireswarm::run

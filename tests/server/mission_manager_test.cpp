@@ -250,6 +250,34 @@ TEST(MissionManager, ASortieCutShortByALowBatteryIsResumedFromTheLegItWasOn) {
       std::vector<radio::Waypoint>(mission.waypoints.begin() + 2, mission.waypoints.begin() + 6));
 }
 
+TEST(MissionManager, AMissionHandedToADroneBetweenSortiesWaitsForItsPack) {
+  Air air(0.0, radio::LinkMode::kSlots);
+  air.Add(1);
+  ManagedScheduler server = Manage(air.mode, {1}, {ThreeSorties(1)});
+  MissionManager& manager = *server.manager;
+  FakeVehicle& vehicle = air.vehicle(1);
+  air.Run(server, kLimit, [&] { return manager.AllStarted(); });
+  Report(vehicle, 42, 3, radio::FlightMode::kLanded, 30);
+  air.Run(server, air.channel().now() + kLimit,
+          [&] { return manager.progress(1).phase == DronePhase::kSwapping; });
+  // Its two sorties to come plus handed-over lanes, as the handover builds it.
+  DroneMission more = Mission(1, 10);
+  more.mission_id = 50;
+  more.sortie_starts = {4};
+  manager.Replace(more);
+  EXPECT_EQ(manager.progress(1).phase, DronePhase::kSwapping);
+  EXPECT_EQ(manager.progress(1).sorties_flown, 1U);
+  EXPECT_EQ(manager.Remaining(1, /*from_leg_start=*/false), more.waypoints);
+  air.Run(server, air.channel().now() + std::chrono::seconds(30), [] { return false; });
+  EXPECT_EQ(vehicle.starts_accepted(), 1) << "nothing starts on the old pack";
+  Report(vehicle, 42, 3, radio::FlightMode::kLanded, 100);
+  air.Run(server, air.channel().now() + kLimit,
+          [&] { return manager.progress(1).phase == DronePhase::kFlying; });
+  EXPECT_EQ(vehicle.commands().back().mission_id, 50);
+  EXPECT_EQ(vehicle.waypoints(),
+            std::vector<radio::Waypoint>(more.waypoints.begin(), more.waypoints.begin() + 4));
+}
+
 TEST(MissionManager, RestoresADroneBetweenSortiesWithoutUploadingAgain) {
   radio::MasterScheduler scheduler(radio::SchedulerConfig{});
   scheduler.AddVehicle(1, 1.0);

@@ -160,8 +160,9 @@ class MissionManager {
 
   /// Gives a drone a new mission (another mission ID; the waypoints it flies
   /// from where it is): its chunks go up and it is told to start, as at the
-  /// mission's start, and its progress counts the new mission. `send` false only
-  /// records it (a restored server). Throws std::out_of_range for a vehicle
+  /// mission's start, and its progress counts the new mission; a drone on the
+  /// ground between sorties (kSwapping) starts it once its pack is fresh. `send`
+  /// false only records it (a restored server). Throws std::out_of_range for a vehicle
   /// without a mission and std::invalid_argument for the same mission ID.
   void Replace(DroneMission mission, bool send = true);
   /// Gives a drone up as lost: kFailed with `why`, its requests forgotten,
@@ -204,6 +205,9 @@ class MissionManager {
     std::vector<int> chunk_rounds;            // per chunk: sends so far
     DroneProgress progress;
     common::Nanos retry_start_at = common::Nanos::max();
+    // kSwapping: the sortie that goes up on a fresh pack (a mission handed to a
+    // drone on the ground starts at its first).
+    std::size_t next_sortie = 0;
   };
   static Drone DroneFor(DroneMission mission);
   // Makes `sortie` the drone's current one: its chunks, nothing sent.
