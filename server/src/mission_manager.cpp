@@ -384,16 +384,28 @@ void MissionManager::OnTelemetry(const radio::TelemetryReceived& received) {
   if (telemetry.mode == radio::FlightMode::kLanded) OnLanded(drone, telemetry);
 }
 
+bool MissionManager::CutShort(std::uint8_t vehicle, const radio::Telemetry& telemetry) const {
+  const Drone& drone = Find(vehicle);
+  if (drone.progress.phase != DronePhase::kFlying ||
+      telemetry.mission_id != SortieMissionId(drone.mission, drone.progress.sortie)) {
+    return false;
+  }
+  // Sent home by a low battery before its sortie's last waypoint. Only when it
+  // got somewhere (past its sortie's second waypoint), or a pack too small would
+  // loop forever.
+  const auto [first, end] = SortieRange(drone.mission, drone.progress.sortie);
+  const std::size_t flying_to = first + telemetry.waypoint_index;
+  const bool low_battery = (telemetry.flags & radio::telemetry_flags::kLowBattery) != 0;
+  return low_battery && flying_to + 1 < end && flying_to >= first + 2;
+}
+
 void MissionManager::OnLanded(Drone& drone, const radio::Telemetry& telemetry) {
   DroneProgress& progress = drone.progress;
   DroneMission& mission = drone.mission;
-  const auto [first, end] = SortieRange(mission, progress.sortie);
-  // Sent home by a low battery before its sortie's last waypoint: the rest, from
-  // the leg it was on, becomes a sortie of its own. Only when it got somewhere
-  // (past its sortie's second waypoint), or a pack too small would loop forever.
+  const std::size_t first = SortieRange(mission, progress.sortie).first;
+  // Cut short: the rest, from the leg it was on, becomes a sortie of its own.
   const std::size_t flying_to = first + telemetry.waypoint_index;
-  const bool low_battery = (telemetry.flags & radio::telemetry_flags::kLowBattery) != 0;
-  if (low_battery && flying_to + 1 < end && flying_to >= first + 2) {
+  if (CutShort(mission.vehicle, telemetry)) {
     const auto at = mission.sortie_starts.begin() + static_cast<std::ptrdiff_t>(progress.sortie);
     mission.sortie_starts.insert(at, flying_to - 1);
     ++progress.sortie_count;

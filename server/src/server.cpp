@@ -279,7 +279,7 @@ void Server::UpdateState(double now_s) {
       return false;
     }
     const std::optional<radio::Telemetry>& telemetry = registry_.state(id).telemetry;
-    if (!telemetry) return false;
+    if (!telemetry || mission_->CutShort(id, *telemetry)) return false;
     const radio::FlightMode mode = telemetry->mode;
     return mode == radio::FlightMode::kReturnToLaunch || mode == radio::FlightMode::kLand ||
            mode == radio::FlightMode::kLanded;

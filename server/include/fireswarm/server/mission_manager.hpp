@@ -176,6 +176,11 @@ class MissionManager {
   /// vehicle without a mission.
   std::vector<radio::Waypoint> Remaining(std::uint8_t vehicle, bool from_leg_start,
                                          std::vector<std::size_t>* sortie_starts = nullptr) const;
+  /// True when `telemetry` (the drone's latest) shows its sortie cut short: sent
+  /// home by a low battery before the sortie's last waypoint, with enough flown
+  /// that its rest goes up as a sortie of its own after the swap (it is not done).
+  /// Throws std::out_of_range for a vehicle without a mission.
+  bool CutShort(std::uint8_t vehicle, const radio::Telemetry& telemetry) const;
   /// The highest radio mission ID any drone's sorties use.
   std::uint16_t LastMissionId() const;
   /// The mission a drone flies now. Throws std::out_of_range as progress().
