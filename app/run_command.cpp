@@ -216,6 +216,18 @@ void PrintSummary(const run::RunResult& result) {
   std::cout << "  fires confirmed " << confirmed << " / " << report.fires.size()
             << ", false tracks " << report.false_tracks.size() << ", coverage "
             << 100.0 * report.coverage << " %, collisions " << report.collisions.size() << "\n";
+  int planned = 0;
+  int flown = 0;
+  int swaps = 0;
+  for (const auto& [id, vehicle] : report.vehicles) {
+    planned += vehicle.sorties_planned;
+    flown += vehicle.sorties_flown;
+    swaps += vehicle.battery_swaps;
+  }
+  if (planned > static_cast<int>(report.vehicles.size())) {
+    std::cout << "  sorties flown " << flown << " / " << planned << " planned, battery swaps "
+              << swaps << "\n";
+  }
   for (const run::ExpectOutcome& e : report.expect) {
     std::cout << "  " << (e.passed ? "pass" : "FAIL") << "  " << e.name << ": " << e.value
               << " (limit " << e.limit << ")";

@@ -140,10 +140,13 @@ std::vector<server::DroneMission> PlanMissions(const Flags& f, const planner::Se
   }
   std::vector<server::DroneMission> missions = server::WithoutLaunchSite(
       server::ToDroneMissions(plan, kMissionId, f.altitude_m, f.speed_mps), area.frame,
-      {launch.x(), launch.y()});
+      server::LaunchSitesOf(plan));
   nlohmann::ordered_json line;
   line["event"] = "planned";
   line["drones"] = plan.drones.size();
+  int sorties = 0;
+  for (const planner::DronePlan& drone : plan.drones) sorties += drone.sorties;
+  line["sorties"] = sorties;
   line["coverage"] = plan.coverage;
   line["makespan_s"] = plan.makespan_s;
   std::cout << line.dump() << std::endl;

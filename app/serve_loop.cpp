@@ -8,6 +8,7 @@
 
 #include "fireswarm/common/time.hpp"
 #include "fireswarm/radio/messages.hpp"
+#include "fireswarm/server/vehicle_task.hpp"
 #include "stop_signals.hpp"
 
 namespace fireswarm::app {
@@ -189,6 +190,11 @@ nlohmann::ordered_json ServeLoop::Summary() const {
         v["phase"] = server::ToString(progress.phase);
         v["waypoint_index"] = progress.waypoint_index;
         v["waypoints"] = progress.waypoint_count;
+        // Sorties as the task view counts them (from 1; 0 on the ground between).
+        const server::TaskView task = server::TaskOf(server_, id, clock_s_);
+        v["sortie"] = task.sortie;
+        v["sorties_flown"] = task.sorties_flown;
+        v["sorties"] = task.sortie_count;
         if (!progress.failure.empty()) v["failure"] = progress.failure;
       }
     }

@@ -40,6 +40,9 @@ constexpr double kMinStandSpacingM = 4.0;
 constexpr double kMinStandRingM = 5.0;
 constexpr double kMinLinkLostS = 2.0;
 constexpr double kMaxLinkLostS = 600.0;
+// The ground crew's battery swap after a landing, s (run's fleet.swap_s range).
+constexpr double kDefaultSwapS = 300.0;
+constexpr double kMaxSwapS = 3'600.0;
 
 struct Flags {
   int count = 1;
@@ -50,6 +53,7 @@ struct Flags {
   std::string camera = "seed";
   SimRunFlags run;
   std::optional<double> link_lost_timeout_s;
+  double swap_s = kDefaultSwapS;
 };
 
 void CheckFlags(const Flags& f, const po::variables_map& values) {
@@ -74,6 +78,9 @@ void CheckFlags(const Flags& f, const po::variables_map& values) {
       !(*f.link_lost_timeout_s >= kMinLinkLostS && *f.link_lost_timeout_s <= kMaxLinkLostS)) {
     ThrowBadFlag(kName, "link-lost-timeout-s", "in [2, 600]", FlagText(*f.link_lost_timeout_s));
   }
+  if (!(f.swap_s >= 0.0 && f.swap_s <= kMaxSwapS)) {
+    ThrowBadFlag(kName, "swap-s", "in [0, 3600]", FlagText(f.swap_s));
+  }
 }
 
 // Stands on a ring around the launch site (the world's origin), a few metres
@@ -97,6 +104,7 @@ sim2d::SimulationConfig WorldFor(const Flags& f) {
   sim2d::SimulationConfig config;
   config.world.seed = f.run.seed;
   config.world.origin = launch;
+  config.world.battery_swap_s = f.swap_s;
   config.fire.origin_m = sim2d::Vec2(-kWorldHalfWidthM, -kWorldHalfWidthM);
   config.fire.width_m = 2.0 * kWorldHalfWidthM;
   config.fire.height_m = 2.0 * kWorldHalfWidthM;
@@ -168,6 +176,9 @@ int RunSim(const std::vector<std::string>& args) {
       po::value<double>()->notifier([&f](double v) { f.link_lost_timeout_s = v; }),
       "set every vehicle's safety.link_lost_timeout_s parameter, simulated s, 2..600 (default: "
       "the parameter's default)");
+  add("swap-s", po::value(&f.swap_s)->default_value(f.swap_s),
+      "the ground crew puts a full pack in a vehicle this long after it landed, simulated s, "
+      "0..3600 (0: never), so the server's next sortie can start");
   po::variables_map values;
   if (!ParseCommandLine(kName,
                         "--launch LAT,LON (--udp LOCAL REMOTE | --serial DEVICE) [--count N] "

@@ -29,6 +29,10 @@ constexpr double kLandedAfterS = 3.0;
 // navigator at cruise speed, and circles from there on (the loiter's radial
 // control spirals in slowly from afar: a far investigator never arrived), m.
 constexpr double kLoiterCaptureM = 10.0;
+// On the ground, a pack at least this full is a fresh one (a battery swap between
+// sorties): the low-battery state that sent the vehicle home is over. The server
+// starts the next sortie at the same level (server::kFreshPackPercent).
+constexpr double kFreshPackFraction = 0.95;
 
 // A waypoint without an altitude (0) is flown at `default_altitude_m`.
 std::vector<RoutePoint> RouteOf(const Mission& mission, double default_altitude_m) {
@@ -240,8 +244,11 @@ radio::CommandResult Vehicle::OnCommand(const radio::Command& command) {
 }
 
 void Vehicle::CheckSafety(Nanos now) {
-  if (!Airborne() || mode_ == FlightMode::kLand) return;
   const Estimate& state = estimator_.estimate();
+  if (!Airborne() && low_battery_ && state.battery_fraction >= kFreshPackFraction) {
+    low_battery_ = false;
+  }
+  if (!Airborne() || mode_ == FlightMode::kLand) return;
   if (state.battery_fraction < Param(ParamId::kRtlBatteryFraction) && !low_battery_) {
     low_battery_ = true;
     if (mode_ != FlightMode::kReturnToLaunch) {

@@ -107,7 +107,12 @@ nlohmann::ordered_json ToJson(const Report& report) {
   for (const auto& [id, vehicle] : report.vehicles) {
     vehicles[std::to_string(id)] = {{"distance_m", Number(vehicle.distance_m)},
                                     {"battery_used", Number(vehicle.battery_used)},
-                                    {"final_state", vehicle.final_state}};
+                                    {"final_state", vehicle.final_state},
+                                    {"sorties",
+                                     {{"planned", vehicle.sorties_planned},
+                                      {"flown", vehicle.sorties_flown},
+                                      {"current", vehicle.sortie}}},
+                                    {"battery_swaps", vehicle.battery_swaps}};
   }
   j["vehicles"] = vehicles;
   j["sim_seconds"] = Number(report.sim_seconds);

@@ -19,6 +19,8 @@
 #include "fireswarm/planner/plan.hpp"
 #include "fireswarm/radio/channel.hpp"
 #include "fireswarm/radio/channel_loop.hpp"
+#include "fireswarm/server/journal.hpp"
+#include "fireswarm/server/journal_format.hpp"
 #include "fireswarm/server/mission_manager.hpp"
 #include "fireswarm/server/server.hpp"
 #include "fireswarm/sim2d/simulation.hpp"
@@ -99,17 +101,30 @@ std::vector<SilentWindow> SilentWindowsOf(const Scenario& scenario, int id) {
   return out;
 }
 
+// The plan as the runner needs it: the missions the vehicles fly, each drone's
+// launch site and its sorties.
+struct PlannedMissions {
+  std::vector<server::DroneMission> missions;
+  std::map<std::uint8_t, common::EastNorth> sites;
+  std::map<int, int> sorties;  // receiver ID -> sorties planned
+};
+
 // Plans and turns the plan into the missions the vehicles fly. Planner refusals
 // are bad input: they name the scenario file.
-std::vector<server::DroneMission> PlanMissions(const Scenario& scenario) {
+PlannedMissions PlanMissions(const Scenario& scenario) {
   try {
     const planner::Plan plan =
         planner::PlanSearch(scenario.area, MakeFleetSpec(scenario), scenario.fleet.planner,
                             static_cast<unsigned>(scenario.seed));
-    return internal::InAltitudeLayers(server::WithoutLaunchSite(
+    PlannedMissions out;
+    out.sites = server::LaunchSitesOf(plan);
+    for (const planner::DronePlan& drone : plan.drones)
+      out.sorties[drone.receiver_id] = drone.sorties;
+    out.missions = internal::InAltitudeLayers(server::WithoutLaunchSite(
         server::ToDroneMissions(plan, kMissionId, scenario.fleet.altitude_m,
                                 scenario.fleet.speed_mps),
-        scenario.area.frame, scenario.area.frame.ToLocal(scenario.fleet.launch)));
+        scenario.area.frame, out.sites));
+    return out;
   } catch (const std::invalid_argument& e) {
     throw ScenarioError(scenario.source + ": fleet: the planner refused it: " + e.what());
   } catch (const std::runtime_error& e) {
@@ -121,14 +136,21 @@ std::vector<server::DroneMission> PlanMissions(const Scenario& scenario) {
 class Lockstep {
  public:
   Lockstep(const Scenario& scenario, const std::vector<FireSpec>& fires,
-           const std::vector<server::DroneMission>& missions)
-      : simulation_(internal::MakeSimulationConfig(scenario, fires,
-                                                   internal::StandPositions(scenario, missions))),
+           const PlannedMissions& planned)
+      : simulation_(internal::MakeSimulationConfig(
+            scenario, fires, internal::StandPositions(scenario, planned.missions, planned.sites))),
+        sorties_planned_(planned.sorties),
         fleet_(simulation_),
         server_config_(MakeServerConfig(scenario)),
-        server_(server_config_, scenario.area.frame),
+        frame_(scenario.area.frame),
+        server_(std::make_unique<server::Server>(server_config_, frame_)),
+        // Through server_, which a restart replaces.
         radio_(MakeChannelConfig(scenario, server_config_.radio.timing),
-               scenario.seed ^ kChannelSeedSalt, radio::MasterOf(server_)) {
+               scenario.seed ^ kChannelSeedSalt,
+               radio::LoopMaster{[this] { return server_->NextWakeup(); },
+                                 [this](Nanos now, std::span<const std::uint8_t> received) {
+                                   return server_->Step(now, received);
+                                 }}) {
     for (const int id : scenario.fleet.ReceiverIds()) {
       agents::VehicleConfig config;
       config.id = static_cast<std::uint8_t>(id);
@@ -144,13 +166,13 @@ class Lockstep {
       pitch.value = static_cast<float>(scenario.fleet.camera_pitch_deg);
       vehicle->OnParamWrite(pitch);
       fleet_.Add(*vehicle);
-      server_.AddVehicle(id);
+      server_->AddVehicle(id);
       radio_.AddVehicle(RadioSideOf(*vehicle, SilentWindowsOf(scenario, id)));
       vehicles_.push_back(std::move(vehicle));
     }
-    server_.LoadMission(missions);
+    server_->LoadMission(planned.missions);
     std::string why;
-    if (!server_.Handle(server::OperatorCommand{}, Nanos{0}, &why)) {
+    if (!server_->Handle(server::OperatorCommand{}, Nanos{0}, &why)) {
       throw std::logic_error("runner: the server refused to start the mission: " + why);
     }
   }
@@ -165,8 +187,31 @@ class Lockstep {
   double time_s() const { return simulation_.time_s(); }
   const sim2d::World& world() const { return simulation_.world(); }
   const sim2d::Simulation& simulation() const { return simulation_; }
-  const server::Server& server() const { return server_; }
-  server::Server& server() { return server_; }
+  const server::Server& server() const { return *server_; }
+  server::Server& server() { return *server_; }
+
+  /// Keeps what the server journaled since the last call (for a restart).
+  void KeepJournal() {
+    for (server::JournalEntry& entry : server_->TakeJournalEntries()) {
+      journal_.push_back(std::move(entry));
+    }
+  }
+
+  /// Replaces the server by one restored from its journal, every entry through
+  /// the journal file's record format (as `fireswarm serve --journal` after a
+  /// crash): what the next server reads is what the file would hold.
+  void RestartServer() {
+    KeepJournal();
+    std::vector<server::JournalEntry> entries;
+    std::uint64_t seq = 0;
+    for (const server::JournalEntry& entry : journal_) {
+      const server::JournalRecord record{++seq, entry.t_s, server::JournalKindOf(entry),
+                                         server::JournalDataOf(entry)};
+      entries.push_back(server::JournalEntryOf(record));
+    }
+    server_ =
+        std::make_unique<server::Server>(server::Server::Restore(server_config_, frame_, entries));
+  }
   const radio::SharedChannel& channel() const { return radio_.channel(); }
   const std::vector<std::unique_ptr<agents::Vehicle>>& vehicles() const { return vehicles_; }
 
@@ -190,11 +235,22 @@ class Lockstep {
       out.modes[v->id()] = state;
       out.reports_queued += v->endpoint().stats().reports_queued;
     }
+    out.sorties_planned = sorties_planned_;
     return out;
   }
 
-  /// Every vehicle landed after flying, crashed or lost.
+  /// Every vehicle landed after flying, crashed or lost, and none waits on the
+  /// ground for its next sortie (the server's mission says).
   bool AllDown() const {
+    if (const server::MissionManager* mission = server_->mission()) {
+      const bool between_sorties = std::ranges::any_of(mission->vehicles(), [&](std::uint8_t id) {
+        const server::DroneProgress& progress = mission->progress(id);
+        return progress.phase == server::DronePhase::kSwapping ||
+               (progress.sorties_flown > 0 && (progress.phase == server::DronePhase::kUploading ||
+                                               progress.phase == server::DronePhase::kStarting));
+      });
+      if (between_sorties) return false;
+    }
     return std::ranges::all_of(vehicles_, [&](const auto& v) {
       const sim2d::FlightPhase phase = world().Truth(v->id()).phase;
       return phase == sim2d::FlightPhase::kCrashed || phase == sim2d::FlightPhase::kLost ||
@@ -204,10 +260,13 @@ class Lockstep {
 
  private:
   sim2d::Simulation simulation_;
+  std::map<int, int> sorties_planned_;
   hil::LockstepFleet fleet_;
   server::ServerConfig server_config_;
-  server::Server server_;
-  radio::ChannelLoop radio_;  // steps server_ (its master) and the vehicles
+  common::LocalFrame frame_;
+  std::unique_ptr<server::Server> server_;
+  std::vector<server::JournalEntry> journal_;  // kept for a restart only
+  radio::ChannelLoop radio_;                   // steps *server_ (its master) and the vehicles
   std::vector<std::unique_ptr<agents::Vehicle>> vehicles_;
 };
 
@@ -262,8 +321,8 @@ const char* ToString(StopReason reason) {
 RunResult RunScenario(const Scenario& scenario, const RunOptions& options) {
   const auto wall_start = std::chrono::steady_clock::now();
   const std::vector<FireSpec> fires = internal::ExpandFires(scenario);
-  const std::vector<server::DroneMission> missions = PlanMissions(scenario);
-  Lockstep run(scenario, fires, missions);
+  const PlannedMissions planned = PlanMissions(scenario);
+  Lockstep run(scenario, fires, planned);
 
   internal::Scorer scorer(scenario, fires);
 
@@ -285,6 +344,13 @@ RunResult RunScenario(const Scenario& scenario, const RunOptions& options) {
     run.Step();
     const double t_s = run.time_s();
     if (options.on_step) options.on_step(t_s, run.server());
+    if (options.restart_server_when && result.server_restarts == 0) {
+      run.KeepJournal();
+      if (options.restart_server_when(t_s, run.server())) {
+        run.RestartServer();
+        ++result.server_restarts;
+      }
+    }
     scorer.Observe(t_s, run.simulation(), run.server());
     if (t_s + kEps >= next_progress_s) {
       report_progress();

@@ -52,16 +52,54 @@ void ReadFleetIds(const Mapping& fleet, FleetConfig& out) {
   }
 }
 
+common::LatLon ReadSitePosition(const Field& at, const Mapping& site,
+                                const planner::SearchArea& area) {
+  const common::LatLon position = internal::ReadLatLon(site);
+  internal::CheckNearArea(at, area, position);
+  if (internal::InNoFly(area, position)) at.Fail("lies inside a no-fly zone");
+  return position;
+}
+
+// `fleet.launch`: one {lat, lon}, or a list of sites {lat, lon, drones}.
 void ReadLaunch(const Mapping& fleet, const planner::SearchArea& area, FleetConfig& out) {
   const std::optional<Field> launch = fleet.Find("launch");
   if (!launch) {
     out.launch = DefaultLaunch(area);
+    out.launch_sites = {{out.launch, std::nullopt}};
     return;
   }
-  out.launch = internal::ReadLatLon(Mapping(*launch, {"lat", "lon"}));
   out.launch_given = true;
-  internal::CheckNearArea(*launch, area, out.launch);
-  if (internal::InNoFly(area, out.launch)) launch->Fail("lies inside a no-fly zone");
+  if (!launch->IsSequence()) {
+    out.launch = ReadSitePosition(*launch, Mapping(*launch, {"lat", "lon"}), area);
+    out.launch_sites = {{out.launch, std::nullopt}};
+    return;
+  }
+  const std::vector<Field> sites = launch->Elements();
+  if (sites.empty()) launch->Fail("lists no launch site (give one {lat, lon} at least)");
+  int counted = 0;
+  std::optional<Field> uncounted;
+  std::optional<Field> last_count;
+  for (const Field& site : sites) {
+    const Mapping entry(site, {"lat", "lon", "drones"});
+    LaunchSiteConfig config;
+    config.position = ReadSitePosition(site, entry, area);
+    if (const std::optional<Field> drones = entry.Find("drones")) {
+      config.drones = static_cast<int>(drones->Integer(0, out.count));
+      counted += *config.drones;
+      last_count = drones;
+    } else {
+      uncounted = site;
+    }
+    out.launch_sites.push_back(config);
+  }
+  if (last_count && uncounted) {
+    uncounted->Fail("has no drones while another site has: give drones on every site or on none");
+  }
+  if (last_count && counted != out.count) {
+    last_count->Fail("the sites' drones sum to " + std::to_string(counted) + ", not fleet.count " +
+                     std::to_string(out.count));
+  }
+  out.launch = out.launch_sites.front().position;
 }
 
 void ReadCamera(const Mapping& fleet, FleetConfig& out) {
@@ -82,7 +120,7 @@ void ReadCamera(const Mapping& fleet, FleetConfig& out) {
 FleetConfig ReadFleet(const Mapping& root, const planner::SearchArea& area) {
   const Mapping fleet(root.Required("fleet"),
                       {"count", "first_id", "launch", "camera", "camera_pitch_deg", "altitude_m",
-                       "speed_mps", "endurance_s", "planner", "stand_spacing_m"});
+                       "speed_mps", "endurance_s", "swap_s", "planner", "stand_spacing_m"});
   FleetConfig out;
   ReadFleetIds(fleet, out);
   ReadLaunch(fleet, area, out);
@@ -93,6 +131,7 @@ FleetConfig ReadFleet(const Mapping& root, const planner::SearchArea& area) {
       fleet.Number("speed_mps", out.speed_mps, Range{0.0, internal::kMaxSpeedMps, true});
   out.endurance_s =
       fleet.Number("endurance_s", out.endurance_s, Range{0.0, internal::kMaxEnduranceS, true});
+  out.swap_s = fleet.Number("swap_s", out.swap_s, Range{0.0, internal::kMaxSwapS, true});
   if (const std::optional<Field> planner = fleet.Find("planner")) {
     out.planner = kPlannerKinds.at(planner->OneOf(kPlannerNames));
   }
@@ -239,11 +278,15 @@ planner::FleetSpec MakeFleetSpec(const Scenario& scenario) {
   const FleetConfig& fleet = scenario.fleet;
   planner::FleetSpec spec;
   spec.receiver_ids = fleet.ReceiverIds();
-  const common::EastNorth launch = scenario.area.frame.ToLocal(fleet.launch);
-  spec.launch_points = {planner::Point(launch.east_m, launch.north_m)};
+  for (const LaunchSiteConfig& site : fleet.launch_sites) {
+    const common::EastNorth launch = scenario.area.frame.ToLocal(site.position);
+    spec.launch_points.emplace_back(launch.east_m, launch.north_m);
+    if (site.drones) spec.site_drones.push_back(*site.drones);
+  }
   spec.altitude_m = fleet.altitude_m;
   spec.speed_mps = fleet.speed_mps;
   spec.endurance_s = fleet.endurance_s;
+  spec.swap_s = fleet.swap_s;
   spec.camera = fleet.camera;
   spec.camera_pitch_deg = fleet.camera_pitch_deg;
   return spec;

@@ -16,6 +16,8 @@ inline constexpr double kMaxDurationS = 86'400.0;  // one day of simulated time
 inline constexpr double kMaxAltitudeM = 1'000.0;
 inline constexpr double kMaxSpeedMps = 100.0;
 inline constexpr double kMaxEnduranceS = 86'400.0;
+/// A battery swap longer than an hour is more likely minutes typed as seconds.
+inline constexpr double kMaxSwapS = 3'600.0;
 /// Stands closer than this would nearly put two parked vehicles' rotor discs
 /// (sim2d: 0.25 m radius) into each other.
 inline constexpr double kMinStandSpacingM = 1.0;

@@ -7,6 +7,7 @@
 #include <unordered_set>
 
 #include "fireswarm/common/north_east.hpp"
+#include "fireswarm/server/vehicle_task.hpp"
 
 namespace fireswarm::run::internal {
 namespace {
@@ -351,6 +352,17 @@ Report Scorer::Finish(const sim2d::World& world, const server::Server& server,
     vehicle.battery_used = 1.0 - world.Truth(id).battery_fraction;
     const auto mode = final_state.modes.find(id);
     vehicle.final_state = mode != final_state.modes.end() ? mode->second : "unknown";
+    const auto planned = final_state.sorties_planned.find(id);
+    vehicle.sorties_planned = planned != final_state.sorties_planned.end() ? planned->second : 0;
+    const server::TaskView task =
+        server::TaskOf(server, static_cast<std::uint8_t>(id), final_state.sim_seconds);
+    vehicle.sorties_flown = task.sorties_flown;
+    vehicle.sortie = task.sortie;
+    for (const sim2d::WorldEvent& event : world.events()) {
+      if (event.kind == sim2d::EventKind::kBatterySwap && event.vehicle_a == id) {
+        ++vehicle.battery_swaps;
+      }
+    }
     vehicle.track = trace.track;
     vehicle.track.push_back(ToLatLon(world.frame(), world.Truth(id).position_m));
     report.vehicles[id] = vehicle;

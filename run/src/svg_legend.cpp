@@ -82,8 +82,13 @@ std::string LegendMarkup(const Report& report, const LegendLayout& layout, Px to
   row(CollisionMarker(at()), "collision (time, drones)");
   row(TrackEndMarker(at(), "#555"), "drone's last position");
 
+  // With sorties, each drone's row says how many it flew of those planned.
+  const bool sorties = std::ranges::any_of(
+      report.vehicles, [](const auto& entry) { return entry.second.sorties_planned > 1; });
   svg += "<text x=\"" + N(top_left.x) + "\" y=\"" + N(y + 4.0 + kRowPx / 2.0) +
-         "\" font-weight=\"bold\">Drones (receiver ID)</text>\n";
+         "\" font-weight=\"bold\">" +
+         (sorties ? "Drones (receiver ID: sorties flown/planned)" : "Drones (receiver ID)") +
+         "</text>\n";
   const double drones_top = y + (kHeadingRows - 1.0) * kRowPx;
   double index = 0.0;
   for (const auto& [id, vehicle] : report.vehicles) {
@@ -92,7 +97,11 @@ std::string LegendMarkup(const Report& report, const LegendLayout& layout, Px to
     const double row_y = drones_top + (index - column * layout.rows_per_column) * kRowPx;
     svg += "<path d=\"M" + XY({x, row_y}) + "H" + N(x + 20.0) + "\" stroke=\"" + DroneColour(id) +
            "\" stroke-width=\"3\"/><text x=\"" + N(x + 26.0) + "\" y=\"" + N(row_y + 4.0) + "\">" +
-           std::to_string(id) + "</text>\n";
+           std::to_string(id) +
+           (sorties ? ": " + std::to_string(vehicle.sorties_flown) + "/" +
+                          std::to_string(vehicle.sorties_planned)
+                    : std::string()) +
+           "</text>\n";
     index += 1.0;
   }
   return svg + "</g>\n";

@@ -84,6 +84,7 @@ Bounds MapBounds(const Report& report, const Scenario& scenario) {
     if (const auto local = Local(scenario.area, position)) bounds.Add(*local);
   };
   add(scenario.fleet.launch);
+  for (const LaunchSiteConfig& site : scenario.fleet.launch_sites) add(site.position);
   for (const auto& [id, vehicle] : report.vehicles) {
     for (const common::LatLon& position : vehicle.track) add(position);
   }
@@ -297,9 +298,17 @@ std::string SvgMap(const Report& report, const Scenario& scenario) {
   svg += "<g id=\"map\" clip-path=\"url(#map-clip)\">\n";
   svg += AreaLayer(scenario, view);
   svg += TrackLayer(report, scenario, view);
-  if (const auto launch = Local(scenario.area, scenario.fleet.launch)) {
-    svg += "<g id=\"launch\">" + LaunchMarker(view.ToPx(*launch)) + "</g>\n";
+  // Every launch site (scenarios built in code may list none: their one launch).
+  std::vector<common::LatLon> sites{scenario.fleet.launch};
+  if (!scenario.fleet.launch_sites.empty()) {
+    sites.clear();
+    for (const LaunchSiteConfig& site : scenario.fleet.launch_sites) sites.push_back(site.position);
   }
+  svg += "<g id=\"launch\">";
+  for (const common::LatLon& site : sites) {
+    if (const auto launch = Local(scenario.area, site)) svg += LaunchMarker(view.ToPx(*launch));
+  }
+  svg += "</g>\n";
   svg += FireLayer(report, scenario, view, labels);
   svg += FalseTrackLayer(report, scenario, view, labels);
   svg += CollisionLayer(report, scenario, view, labels);

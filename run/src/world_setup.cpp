@@ -156,26 +156,30 @@ std::vector<server::DroneMission> InAltitudeLayers(std::vector<server::DroneMiss
   for (std::size_t k = 0; k < missions.size(); ++k) {
     const double offset_m =
         kAltitudeLayerM * static_cast<double>(k % static_cast<std::size_t>(kAltitudeLayers));
-    std::vector<radio::Waypoint>& route = missions[k].waypoints;
-    for (radio::Waypoint& waypoint : route) waypoint.altitude_m += offset_m;
-    if (route.empty() || route.size() >= radio::kMaxMissionWaypoints) continue;
-    radio::Waypoint way_home = route.back();
-    way_home.altitude_m += kReturnLayerM * static_cast<double>(k) - offset_m;
-    way_home.flags = 0;  // no lane starts here
-    route.push_back(way_home);
+    std::vector<std::vector<radio::Waypoint>> sorties = server::SortiesOf(missions[k]);
+    for (std::vector<radio::Waypoint>& route : sorties) {
+      for (radio::Waypoint& waypoint : route) waypoint.altitude_m += offset_m;
+      if (route.empty() || route.size() >= radio::kMaxMissionWaypoints) continue;
+      radio::Waypoint way_home = route.back();
+      way_home.altitude_m += kReturnLayerM * static_cast<double>(k) - offset_m;
+      way_home.flags = 0;  // no lane starts here
+      route.push_back(way_home);
+    }
+    server::SetSorties(missions[k], sorties);
   }
   return missions;
 }
 
-std::map<int, sim2d::Vec2> StandPositions(const Scenario& scenario,
-                                          const std::vector<server::DroneMission>& missions) {
-  const sim2d::Vec2 launch = LaunchSite(scenario);
-  const std::vector<int> ids = scenario.fleet.ReceiverIds();
+namespace {
+
+// The stands of the drones `ids` of one launch site, as StandPositions says.
+void RingStands(const Scenario& scenario, const sim2d::Vec2& launch, const std::vector<int>& ids,
+                const std::vector<server::DroneMission>& missions,
+                std::map<int, sim2d::Vec2>& stands) {
   const auto n = static_cast<double>(ids.size());
-  std::map<int, sim2d::Vec2> stands;
   if (ids.size() == 1) {
     stands[ids.front()] = launch;
-    return stands;
+    return;
   }
   // Ring radius: with evenly spaced stands, neighbours (chord 2 r sin(pi / n))
   // are at least the spacing apart (fleet.stand_spacing_m, kDefaultStandSpacingM
@@ -213,6 +217,26 @@ std::map<int, sim2d::Vec2> StandPositions(const Scenario& scenario,
     stands[bearings[i].second] =
         launch + ring_m * sim2d::Vec2(std::sin(angles[i]), std::cos(angles[i]));
   }
+}
+
+}  // namespace
+
+std::map<int, sim2d::Vec2> StandPositions(const Scenario& scenario,
+                                          const std::vector<server::DroneMission>& missions,
+                                          const std::map<std::uint8_t, common::EastNorth>& sites) {
+  // The drones of each site (the fleet's first site for one the plan has not).
+  std::map<std::pair<double, double>, std::vector<int>> by_site;
+  const sim2d::Vec2 first_site = LaunchSite(scenario);
+  for (const int id : scenario.fleet.ReceiverIds()) {
+    const auto site = sites.find(static_cast<std::uint8_t>(id));
+    const sim2d::Vec2 at =
+        site == sites.end() ? first_site : sim2d::Vec2(site->second.east_m, site->second.north_m);
+    by_site[{at.x(), at.y()}].push_back(id);
+  }
+  std::map<int, sim2d::Vec2> stands;
+  for (const auto& [at, ids] : by_site) {
+    RingStands(scenario, sim2d::Vec2(at.first, at.second), ids, missions, stands);
+  }
   return stands;
 }
 
@@ -225,15 +249,20 @@ sim2d::SimulationConfig MakeSimulationConfig(const Scenario& scenario,
   world.seed = scenario.seed;
   world.wind.speed_mps = scenario.wind.speed_mps;
   world.wind.from_deg = scenario.wind.from_deg;
+  // The ground crew swaps a landed vehicle's pack in the time the plan gives it.
+  world.battery_swap_s = scenario.fleet.swap_s;
 
   planner::Box box;
   bg::envelope(scenario.area.area, box);
-  // The grid covers the area and the launch site.
-  const sim2d::Vec2 launch = LaunchSite(scenario);
-  const double min_e = std::min(box.min_corner().x(), launch.x()) - kFireGridMarginM;
-  const double min_n = std::min(box.min_corner().y(), launch.y()) - kFireGridMarginM;
-  const double max_e = std::max(box.max_corner().x(), launch.x()) + kFireGridMarginM;
-  const double max_n = std::max(box.max_corner().y(), launch.y()) + kFireGridMarginM;
+  // The grid covers the area and the launch sites.
+  for (const LaunchSiteConfig& site : scenario.fleet.launch_sites) {
+    const sim2d::Vec2 launch = Local(scenario.area, site.position);
+    bg::expand(box, planner::Point(launch.x(), launch.y()));
+  }
+  const double min_e = box.min_corner().x() - kFireGridMarginM;
+  const double min_n = box.min_corner().y() - kFireGridMarginM;
+  const double max_e = box.max_corner().x() + kFireGridMarginM;
+  const double max_n = box.max_corner().y() + kFireGridMarginM;
   config.fire.origin_m = sim2d::Vec2(min_e, min_n);
   config.fire.width_m = std::ceil((max_e - min_e) / kFireCellM) * kFireCellM;
   config.fire.height_m = std::ceil((max_n - min_n) / kFireCellM) * kFireCellM;

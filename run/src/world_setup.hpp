@@ -19,11 +19,14 @@ namespace fireswarm::run::internal {
 std::vector<FireSpec> ExpandFires(const Scenario& scenario);
 
 /// Where each vehicle stands at launch, local ENU metres (the area's frame): on a
-/// ring around the launch site, at least fleet.stand_spacing_m apart (20 m by
-/// default), each in the direction of its first waypoint so that climb-outs run
-/// radially outward and never cross. Keyed by receiver ID.
+/// ring around its own launch site (`sites`, the plan's DronePlan::launch by
+/// receiver ID; a drone not in it stands at the fleet's first site), at least
+/// fleet.stand_spacing_m apart (20 m by default) from the site's other drones,
+/// each in the direction of its first waypoint so that climb-outs run radially
+/// outward and never cross; a site's only drone stands on it. Keyed by receiver ID.
 std::map<int, sim2d::Vec2> StandPositions(const Scenario& scenario,
-                                          const std::vector<server::DroneMission>& missions);
+                                          const std::vector<server::DroneMission>& missions,
+                                          const std::map<std::uint8_t, common::EastNorth>& sites);
 
 /// Altitude layers: the k-th drone (in mission order) flies every waypoint
 /// kAltitudeLayerM * (k % kAltitudeLayers) above the fleet's altitude, so two
@@ -31,7 +34,7 @@ std::map<int, sim2d::Vec2> StandPositions(const Scenario& scenario,
 /// band (sim2d counts contacts only when bands overlap). Going higher only widens
 /// the camera footprint, so the planner's lanes still overlap.
 ///
-/// Each route then ends with a return waypoint over its last one at the drone's
+/// Each sortie then ends with a return waypoint over its last one at the drone's
 /// own return altitude, kReturnLayerM * k above the fleet's altitude, so every
 /// drone flies home at an altitude of its own: the sorties end together and the
 /// returns converge on neighbouring stands (a vehicle returns at the altitude it

@@ -46,9 +46,11 @@ std::vector<radio::Waypoint> WaypointsFrom(const nlohmann::json& list) {
 nlohmann::json MissionsJson(const std::vector<DroneMission>& missions) {
   nlohmann::json drones = nlohmann::json::array();
   for (const DroneMission& m : missions) {
-    drones.push_back({{"vehicle", m.vehicle},
-                      {"mission_id", m.mission_id},
-                      {"waypoints", WaypointsJson(m.waypoints)}});
+    nlohmann::json drone = {{"vehicle", m.vehicle},
+                            {"mission_id", m.mission_id},
+                            {"waypoints", WaypointsJson(m.waypoints)}};
+    if (!m.sortie_starts.empty()) drone["sortie_starts"] = m.sortie_starts;
+    drones.push_back(std::move(drone));
   }
   return drones;
 }
@@ -60,6 +62,9 @@ std::vector<DroneMission> MissionsFrom(const nlohmann::json& drones) {
     m.vehicle = drone.at("vehicle").get<std::uint8_t>();
     m.mission_id = drone.at("mission_id").get<std::uint16_t>();
     m.waypoints = WaypointsFrom(drone.at("waypoints"));
+    if (drone.contains("sortie_starts")) {
+      m.sortie_starts = drone.at("sortie_starts").get<std::vector<std::size_t>>();
+    }
     missions.push_back(std::move(m));
   }
   return missions;
@@ -150,8 +155,14 @@ JournalEvent EventFrom(const std::string& kind, const nlohmann::json& data) {
     return command;
   }
   if (kind == "phase") {
-    return PhaseChanged{data.at("vehicle").get<std::uint8_t>(),
-                        static_cast<DronePhase>(data.at("phase").get<int>())};
+    PhaseChanged changed;
+    changed.vehicle = data.at("vehicle").get<std::uint8_t>();
+    changed.phase = static_cast<DronePhase>(data.at("phase").get<int>());
+    changed.sortie = data.value("sortie", std::size_t{0});
+    if (data.contains("sortie_starts")) {
+      changed.sortie_starts = data.at("sortie_starts").get<std::vector<std::size_t>>();
+    }
+    return changed;
   }
   if (kind == "handover") {
     LanesHandedOver handed;
@@ -220,7 +231,13 @@ nlohmann::json JournalDataOf(const JournalEntry& entry) {
             return command;
           },
           [](const PhaseChanged& e) -> nlohmann::json {
-            return {{"vehicle", e.vehicle}, {"phase", static_cast<int>(e.phase)}};
+            nlohmann::json changed = {{"vehicle", e.vehicle}, {"phase", static_cast<int>(e.phase)}};
+            // Only with sorties, so a one-sortie journal reads as before.
+            if (e.sortie > 0) changed["sortie"] = e.sortie;
+            if (e.sortie_starts && !e.sortie_starts->empty()) {
+              changed["sortie_starts"] = *e.sortie_starts;
+            }
+            return changed;
           },
           [](const LanesHandedOver& e) -> nlohmann::json {
             nlohmann::json handed = {

@@ -1,7 +1,6 @@
 #include "fireswarm/server/mission_manager.hpp"
 
 #include <algorithm>
-#include <cmath>
 #include <stdexcept>
 #include <utility>
 #include <variant>
@@ -10,61 +9,6 @@
 #include "fireswarm/radio/mission_chunks.hpp"
 
 namespace fireswarm::server {
-
-namespace {
-
-// Waypoints this close to the launch site count as the launch site, m.
-constexpr double kLaunchSiteM = 1.0;
-
-}  // namespace
-
-std::vector<DroneMission> ToDroneMissions(const planner::Plan& plan, std::uint16_t mission_id,
-                                          double altitude_m, double speed_mps) {
-  std::vector<DroneMission> missions;
-  for (const planner::DronePlan& drone : plan.drones) {
-    if (drone.receiver_id < 1 || drone.receiver_id > 254) {
-      throw std::invalid_argument("receiver ID " + std::to_string(drone.receiver_id) +
-                                  " is outside 1..254");
-    }
-    if (drone.waypoints.size() > radio::kMaxMissionWaypoints) {
-      throw std::invalid_argument("drone " + std::to_string(drone.receiver_id) + " has " +
-                                  std::to_string(drone.waypoints.size()) +
-                                  " waypoints; a mission holds at most " +
-                                  std::to_string(radio::kMaxMissionWaypoints));
-    }
-    DroneMission mission;
-    mission.vehicle = static_cast<std::uint8_t>(drone.receiver_id);
-    mission.mission_id = mission_id;
-    for (const planner::Waypoint& point : drone.waypoints) {
-      radio::Waypoint waypoint;
-      waypoint.lat_deg = point.geodetic.lat_deg;
-      waypoint.lon_deg = point.geodetic.lon_deg;
-      waypoint.altitude_m = altitude_m;
-      waypoint.speed_mps = speed_mps;
-      waypoint.flags = point.starts_lane ? radio::Waypoint::kLaneStart : std::uint8_t{0};
-      mission.waypoints.push_back(waypoint);
-    }
-    missions.push_back(std::move(mission));
-  }
-  return missions;
-}
-
-std::vector<DroneMission> WithoutLaunchSite(std::vector<DroneMission> missions,
-                                            const common::LocalFrame& frame,
-                                            common::EastNorth launch) {
-  const auto at_launch = [&](const radio::Waypoint& waypoint) {
-    const common::EastNorth local = frame.ToLocal({waypoint.lat_deg, waypoint.lon_deg});
-    return std::hypot(local.east_m - launch.east_m, local.north_m - launch.north_m) < kLaunchSiteM;
-  };
-  for (DroneMission& mission : missions) {
-    std::vector<radio::Waypoint>& route = mission.waypoints;
-    while (route.size() > 1 && at_launch(route.back())) route.pop_back();
-    std::size_t first = 0;
-    while (first + 1 < route.size() && at_launch(route[first])) ++first;
-    route.erase(route.begin(), route.begin() + static_cast<std::ptrdiff_t>(first));
-  }
-  return missions;
-}
 
 const char* ToString(DronePhase phase) {
   switch (phase) {
@@ -78,6 +22,8 @@ const char* ToString(DronePhase phase) {
       return "done";
     case DronePhase::kFailed:
       return "failed";
+    case DronePhase::kSwapping:
+      return "swapping";
   }
   return "unknown";
 }
@@ -98,12 +44,25 @@ MissionManager::MissionManager(radio::MasterScheduler& scheduler,
 
 MissionManager::Drone MissionManager::DroneFor(DroneMission mission) {
   Drone drone;
-  drone.chunks = radio::SplitMission(mission.mission_id, mission.waypoints);
-  drone.chunk_rounds.assign(drone.chunks.size(), 0);
-  drone.progress.chunk_count = drone.chunks.size();
   drone.progress.waypoint_count = mission.waypoints.size();
+  drone.progress.sortie_count = SortieCount(mission);
   drone.mission = std::move(mission);
+  LoadSortie(drone, 0);
   return drone;
+}
+
+void MissionManager::LoadSortie(Drone& drone, std::size_t sortie) {
+  const auto [first, end] = SortieRange(drone.mission, sortie);
+  const std::vector<radio::Waypoint> waypoints(
+      drone.mission.waypoints.begin() + static_cast<std::ptrdiff_t>(first),
+      drone.mission.waypoints.begin() + static_cast<std::ptrdiff_t>(end));
+  drone.chunks = radio::SplitMission(SortieMissionId(drone.mission, sortie), waypoints);
+  drone.chunk_rounds.assign(drone.chunks.size(), 0);
+  drone.progress.sortie = sortie;
+  drone.progress.chunk_count = drone.chunks.size();
+  drone.progress.chunks_acked = 0;
+  drone.progress.start_refusals = 0;
+  drone.progress.waypoint_index = std::max(drone.progress.waypoint_index, first);
 }
 
 void MissionManager::Replace(DroneMission mission, bool send) {
@@ -115,8 +74,17 @@ void MissionManager::Replace(DroneMission mission, bool send) {
   }
   // Answers to the old mission's requests are no longer this drone's business.
   std::erase_if(pending_, [&](const auto& entry) { return entry.second.vehicle == vehicle; });
+  const std::size_t flown = drone.progress.sorties_flown;
+  const bool swapping = drone.progress.phase == DronePhase::kSwapping;
   drone = DroneFor(std::move(mission));
+  drone.progress.sorties_flown = flown;
   ++missions_version_;
+  if (swapping) {
+    // On the ground for its pack: the new mission's first sortie waits for it too.
+    drone.progress.phase = DronePhase::kSwapping;
+    drone.next_sortie = 0;
+    return;
+  }
   if (!send) return;
   for (std::size_t i = 0; i < drone.chunks.size(); ++i) SendChunk(drone, i);
 }
@@ -127,14 +95,37 @@ void MissionManager::MarkLost(std::uint8_t vehicle, std::string why) {
   Fail(drone, std::move(why));
 }
 
-std::vector<radio::Waypoint> MissionManager::Remaining(std::uint8_t vehicle,
-                                                       bool from_leg_start) const {
+std::vector<radio::Waypoint> MissionManager::Remaining(
+    std::uint8_t vehicle, bool from_leg_start, std::vector<std::size_t>* sortie_starts) const {
   const Drone& drone = Find(vehicle);
-  const std::vector<radio::Waypoint>& route = drone.mission.waypoints;
+  const DroneMission& mission = drone.mission;
+  const std::vector<radio::Waypoint>& route = mission.waypoints;
+  if (sortie_starts != nullptr) sortie_starts->clear();
   std::size_t first = drone.progress.waypoint_index;
-  if (from_leg_start && first > 0) --first;
+  std::size_t sortie = drone.progress.sortie;
+  if (drone.progress.phase == DronePhase::kSwapping) {
+    // Its sortie is flown: the next ones are still to fly, whole.
+    sortie = drone.next_sortie;
+    if (sortie >= SortieCount(mission)) return {};
+    first = SortieRange(mission, sortie).first;
+  } else if (from_leg_start && first > SortieRange(mission, sortie).first) {
+    --first;
+  }
   if (first >= route.size()) return {};
+  if (sortie_starts != nullptr) {
+    for (std::size_t k = sortie + 1; k < SortieCount(mission); ++k) {
+      sortie_starts->push_back(SortieRange(mission, k).first - first);
+    }
+  }
   return {route.begin() + static_cast<std::ptrdiff_t>(first), route.end()};
+}
+
+std::uint16_t MissionManager::LastMissionId() const {
+  std::uint16_t last = 0;
+  for (const auto& [vehicle, drone] : drones_) {
+    last = std::max(last, SortieMissionId(drone.mission, SortieCount(drone.mission) - 1));
+  }
+  return last;
 }
 
 const DroneMission& MissionManager::mission_of(std::uint8_t vehicle) const {
@@ -170,7 +161,7 @@ void MissionManager::SendChunk(Drone& drone, std::size_t index) {
 void MissionManager::SendStart(Drone& drone) {
   radio::Command start;
   start.type = radio::CommandType::kStartMission;
-  start.mission_id = drone.mission.mission_id;
+  start.mission_id = SortieMissionId(drone.mission, drone.progress.sortie);
   drone.progress.phase = DronePhase::kStarting;
   drone.retry_start_at = common::Nanos::max();
   pending_[scheduler_.SendCommand(drone.mission.vehicle, start)] =
@@ -241,11 +232,69 @@ void MissionManager::OnTelemetry(const radio::TelemetryReceived& received) {
   const auto found = drones_.find(received.vehicle);
   if (found == drones_.end()) return;
   Drone& drone = found->second;
+  DroneProgress& progress = drone.progress;
   const radio::Telemetry& telemetry = received.telemetry;
-  if (telemetry.mission_id != drone.mission.mission_id) return;
-  if (drone.progress.phase != DronePhase::kFlying) return;
-  drone.progress.waypoint_index = std::max(drone.progress.waypoint_index, telemetry.waypoint_index);
-  if (telemetry.mode == radio::FlightMode::kLanded) drone.progress.phase = DronePhase::kDone;
+  // On the ground for its pack, whatever mission it flew last (one handed over
+  // while it waits has not gone up yet).
+  if (progress.phase == DronePhase::kSwapping) {
+    const bool fresh = telemetry.mode == radio::FlightMode::kLanded &&
+                       telemetry.battery_percent >= kFreshPackPercent &&
+                       (telemetry.flags & radio::telemetry_flags::kLowBattery) == 0;
+    if (fresh && !sorties_stopped_) StartNextSortie(drone);
+    return;
+  }
+  if (telemetry.mission_id != SortieMissionId(drone.mission, progress.sortie)) return;
+  if (progress.phase != DronePhase::kFlying) return;
+  const auto [first, end] = SortieRange(drone.mission, progress.sortie);
+  progress.waypoint_index = std::max(progress.waypoint_index,
+                                     std::min<std::size_t>(first + telemetry.waypoint_index, end));
+  if (telemetry.mode == radio::FlightMode::kLanded) OnLanded(drone, telemetry);
+}
+
+bool MissionManager::CutShort(std::uint8_t vehicle, const radio::Telemetry& telemetry) const {
+  const Drone& drone = Find(vehicle);
+  if (drone.progress.phase != DronePhase::kFlying ||
+      telemetry.mission_id != SortieMissionId(drone.mission, drone.progress.sortie)) {
+    return false;
+  }
+  // Sent home by a low battery before its sortie's last waypoint. Only when it
+  // got somewhere (past its sortie's second waypoint), or a pack too small would
+  // loop forever.
+  const auto [first, end] = SortieRange(drone.mission, drone.progress.sortie);
+  const std::size_t flying_to = first + telemetry.waypoint_index;
+  const bool low_battery = (telemetry.flags & radio::telemetry_flags::kLowBattery) != 0;
+  return low_battery && flying_to + 1 < end && flying_to >= first + 2;
+}
+
+void MissionManager::OnLanded(Drone& drone, const radio::Telemetry& telemetry) {
+  DroneProgress& progress = drone.progress;
+  DroneMission& mission = drone.mission;
+  const std::size_t first = SortieRange(mission, progress.sortie).first;
+  // Cut short: the rest, from the leg it was on, becomes a sortie of its own.
+  const std::size_t flying_to = first + telemetry.waypoint_index;
+  if (CutShort(mission.vehicle, telemetry)) {
+    const auto at = mission.sortie_starts.begin() + static_cast<std::ptrdiff_t>(progress.sortie);
+    mission.sortie_starts.insert(at, flying_to - 1);
+    ++progress.sortie_count;
+    ++missions_version_;
+  }
+  ++progress.sorties_flown;
+  drone.next_sortie = progress.sortie + 1;
+  const bool last = progress.sortie + 1 >= SortieCount(mission);
+  progress.phase = last || sorties_stopped_ ? DronePhase::kDone : DronePhase::kSwapping;
+}
+
+void MissionManager::StartNextSortie(Drone& drone) {
+  LoadSortie(drone, drone.next_sortie);
+  drone.progress.phase = DronePhase::kUploading;
+  for (std::size_t i = 0; i < drone.chunks.size(); ++i) SendChunk(drone, i);
+}
+
+void MissionManager::StopSorties() {
+  sorties_stopped_ = true;
+  for (auto& [vehicle, drone] : drones_) {
+    if (drone.progress.phase == DronePhase::kSwapping) drone.progress.phase = DronePhase::kDone;
+  }
 }
 
 void MissionManager::Step(common::Nanos now) {
@@ -262,8 +311,30 @@ common::Nanos MissionManager::NextWakeup() const {
   return next;
 }
 
-void MissionManager::RestorePhase(std::uint8_t vehicle, DronePhase phase) {
+void MissionManager::RestorePhase(std::uint8_t vehicle, DronePhase phase, std::size_t sortie,
+                                  const std::optional<std::vector<std::size_t>>& sortie_starts) {
   Drone& drone = Find(vehicle);
+  DroneMission& mission = drone.mission;
+  // Sorties cut short made their rests sorties of their own: the journal has
+  // where every sortie begins now.
+  if (sortie_starts && *sortie_starts != mission.sortie_starts) {
+    const bool fits = std::ranges::is_sorted(*sortie_starts) &&
+                      std::ranges::all_of(*sortie_starts, [&](std::size_t start) {
+                        return start > 0 && start < mission.waypoints.size();
+                      });
+    if (!fits) {
+      throw std::invalid_argument("vehicle " + std::to_string(vehicle) +
+                                  ": sortie starts do not fit its route of " +
+                                  std::to_string(mission.waypoints.size()) + " waypoints");
+    }
+    mission.sortie_starts = *sortie_starts;
+    drone.progress.sortie_count = SortieCount(mission);
+    ++missions_version_;
+  }
+  if (sortie != drone.progress.sortie) LoadSortie(drone, sortie);
+  drone.next_sortie = sortie + 1;
+  drone.progress.sorties_flown =
+      sortie + (phase == DronePhase::kSwapping || phase == DronePhase::kDone ? 1 : 0);
   drone.progress.phase = phase;
   if (phase != DronePhase::kUploading) drone.progress.chunks_acked = drone.chunks.size();
   drone.retry_start_at = phase == DronePhase::kStarting ? common::Nanos{0} : common::Nanos::max();

@@ -190,7 +190,8 @@ void Server::OnEvent(const radio::SchedulerEvent& event, double now_s) {
     const auto journaled = journaled_phases_.find(id);
     if (journaled != journaled_phases_.end() && journaled->second == phase) continue;
     journaled_phases_[id] = phase;
-    Record(now_s, PhaseChanged{id, phase});
+    Record(now_s, PhaseChanged{id, phase, mission_->progress(id).sortie,
+                               mission_->mission_of(id).sortie_starts});
   }
 }
 
@@ -269,11 +270,16 @@ void Server::UpdateState(double now_s) {
     return phase(id) == DronePhase::kDone || phase(id) == DronePhase::kFailed;
   });
   // The search is over when no drone searches any more: each is down (done,
-  // failed) or, by its latest telemetry, on its way home or landing (a drone
-  // uploading or starting a handed-over mission still searches).
+  // failed) or, by its latest telemetry, on its way home or landing from its last
+  // sortie (a drone uploading or starting a handed-over mission, or between
+  // sorties, still searches).
   const auto heading_home = [&](std::uint8_t id) {
+    const DroneProgress& progress = mission_->progress(id);
+    if (progress.phase != DronePhase::kFlying || progress.sortie + 1 < progress.sortie_count) {
+      return false;
+    }
     const std::optional<radio::Telemetry>& telemetry = registry_.state(id).telemetry;
-    if (!telemetry) return false;
+    if (!telemetry || mission_->CutShort(id, *telemetry)) return false;
     const radio::FlightMode mode = telemetry->mode;
     return mode == radio::FlightMode::kReturnToLaunch || mode == radio::FlightMode::kLand ||
            mode == radio::FlightMode::kLanded;

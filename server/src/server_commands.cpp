@@ -70,11 +70,14 @@ bool Server::Handle(const OperatorCommand& command, common::Nanos now, std::stri
       accept(registry_.ids());
       SendToAll(radio::CommandType::kAbort, id);
       state_ = MissionState::kAborted;
+      if (mission_) mission_->StopSorties();
       break;
     case Kind::kReturnAll:
       accept(registry_.ids());
       SendToAll(radio::CommandType::kReturnToLaunch, id);
       if (state_ != MissionState::kAborted) state_ = MissionState::kReturning;
+      // Home means home: no drone takes off for its next sortie after this.
+      if (mission_) mission_->StopSorties();
       break;
     case Kind::kHoldAll:
     case Kind::kResumeAll:
@@ -203,7 +206,8 @@ void Server::UpdateStartCommand(const radio::SchedulerEvent& event) {
   }
   for (const std::uint8_t id : mission_->vehicles()) {
     const DroneProgress& progress = mission_->progress(id);
-    if (progress.phase == DronePhase::kFlying || progress.phase == DronePhase::kDone) {
+    if (progress.phase == DronePhase::kFlying || progress.phase == DronePhase::kDone ||
+        progress.phase == DronePhase::kSwapping || progress.sorties_flown > 0) {
       commands_.Advance(start_command_id_, id, TargetState::kAcknowledged);
     } else if (progress.phase == DronePhase::kFailed) {
       commands_.Advance(start_command_id_, id, TargetState::kFailed, progress.failure);

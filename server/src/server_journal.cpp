@@ -79,8 +79,10 @@ void Server::Replay(const JournalEntry& entry) {
               mission_started_s_ = t_s;
             } else if (e.command == Kind::kAbort) {
               state_ = MissionState::kAborted;
+              if (mission_) mission_->StopSorties();
             } else if (e.command == Kind::kReturnAll) {
               if (state_ != MissionState::kAborted) state_ = MissionState::kReturning;
+              if (mission_) mission_->StopSorties();
             }
             // An investigation order is carried out by its InvestigationOpened
             // entry; holds, resumes, returns and landings left nothing to rebuild
@@ -88,7 +90,7 @@ void Server::Replay(const JournalEntry& entry) {
           },
           [&](const PhaseChanged& e) {
             need_mission("phase");
-            mission_->RestorePhase(e.vehicle, e.phase);
+            mission_->RestorePhase(e.vehicle, e.phase, e.sortie, e.sortie_starts);
             journaled_phases_[e.vehicle] = e.phase;
           },
           [&](const LanesHandedOver& e) {

@@ -85,6 +85,13 @@ TaskView TaskOf(const Server& server, std::uint8_t vehicle, double now_s) {
     lanes = LaneOf(mission->mission_of(vehicle).waypoints, progress.waypoint_index);
     view.lane_count = lanes.count;
     view.progress_fraction = mission->WaypointFraction(vehicle);
+    view.sorties_flown = static_cast<int>(progress.sorties_flown);
+    view.sortie_count = static_cast<int>(progress.sorties_flown + progress.sortie_count -
+                                         std::min(progress.sortie, progress.sortie_count));
+    if (progress.phase != DronePhase::kDone && progress.phase != DronePhase::kFailed &&
+        progress.phase != DronePhase::kSwapping) {
+      view.sortie = static_cast<int>(progress.sorties_flown) + 1;
+    }
   }
   // Its latest investigation: the one it flies, or flew last.
   const Investigation* investigation = nullptr;
@@ -127,6 +134,7 @@ TaskView TaskOf(const Server& server, std::uint8_t vehicle, double now_s) {
       view.lane_index = lanes.index;
       break;
     case DronePhase::kDone:
+    case DronePhase::kSwapping:
       view.task = VehicleTask::kLanded;
       break;
     case DronePhase::kFailed:

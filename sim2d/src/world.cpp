@@ -156,6 +156,7 @@ std::uint64_t World::Impl::Hash() const {
     hasher.Add(static_cast<int>(t.phase));
     hasher.Add(vehicles[i].thrust_n);
     hasher.Add(vehicles[i].energy_j);
+    hasher.Add(vehicles[i].swap_due_s);
     vehicles[i].sensors.HashInto(hasher);
   }
   for (const WorldEvent& e : events) {

@@ -163,6 +163,8 @@ void WorldConfig::Validate() const {
   check.Positive("collision.crash_relative_speed_mps", collision.crash_relative_speed_mps);
   check.InRange("collision.restitution", collision.restitution, 0.0, 1.0);
   check.NonNegative("collision.friction", collision.friction);
+  check.NonNegative("battery_swap_s", battery_swap_s);
+  check.Finite("battery_swap_s", battery_swap_s);
   std::set<int> ids;
   for (const VehicleConfig& vehicle : vehicles) {
     ValidateVehicle(vehicle, step_s);

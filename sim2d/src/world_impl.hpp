@@ -33,6 +33,9 @@ struct VehicleRuntime {
   double energy_j = 0.0;
   double capacity_j = 0.0;
   bool battery_empty = false;
+  /// When the ground crew's swap is due (a landing with battery_swap_s > 0);
+  /// negative: none due.
+  double swap_due_s = -1.0;
   FaultState faults;  ///< active during the current step
   SensorSuite sensors;
 };

@@ -123,6 +123,7 @@ void World::Impl::PostPhysics(std::size_t index) {
       truth.phase = FlightPhase::kOnGround;
       Level(truth);
       Record(EventKind::kLanding, index, impact_speed_mps);
+      if (config.battery_swap_s > 0.0) vehicle.swap_due_s = event_time_s + config.battery_swap_s;
     } else if (touchdown == Touchdown::kCrashed) {
       Crash(index, impact_speed_mps, 0);
     }
@@ -131,6 +132,14 @@ void World::Impl::PostPhysics(std::size_t index) {
   }
   vehicle.power_w = BatteryPowerW(params.battery, vehicle.thrust_n);
   vehicle.energy_j = DrainBatteryJ(vehicle.energy_j, vehicle.power_w, substep_s);
+  if (truth.phase != FlightPhase::kOnGround) {
+    vehicle.swap_due_s = -1.0;  // off the ground (or wrecked) before the crew came
+  } else if (vehicle.swap_due_s >= 0.0 && event_time_s >= vehicle.swap_due_s) {
+    vehicle.energy_j = vehicle.capacity_j;
+    vehicle.battery_empty = false;
+    vehicle.swap_due_s = -1.0;
+    Record(EventKind::kBatterySwap, index);
+  }
   truth.battery_fraction = vehicle.energy_j / vehicle.capacity_j;
   if (vehicle.energy_j <= 0.0 && !vehicle.battery_empty) {
     // Defined behaviour: at zero charge the motors stop for good; an airborne

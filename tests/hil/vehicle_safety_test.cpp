@@ -81,5 +81,37 @@ TEST(VehicleSafety, ReturnsAndLandsOnLowBattery) {
   EXPECT_GT(mission.Truth(1).battery_fraction, 0.0);  // landed with charge left
 }
 
+TEST(VehicleSafety, AFreshPackAfterTheCrewsSwapLetsTheNextSortieStart) {
+  constexpr double kSwapS = 60.0;
+  sim2d::SimulationConfig config = OneVehicleWorld();
+  config.world.vehicles[0].multirotor.battery.initial_fraction = 0.3;
+  config.world.battery_swap_s = kSwapS;
+  Mission mission(config);
+  StartLongLane(mission);
+  agents::Vehicle& vehicle = *mission.vehicles[0];
+  RunUntilOr(mission, 900.0, [&] { return vehicle.mode() == FlightMode::kLanded; });
+  ASSERT_EQ(vehicle.mode(), FlightMode::kLanded);
+  ASSERT_EQ(vehicle.stats().low_battery_returns, 1U);
+  const double landed_s = mission.simulation.time_s();
+  // The next sortie, stored while it waits: refused on the low pack...
+  mission.link.UploadAndStart(1, 6,
+                              {WaypointAt(mission, Vec2(0.0, 300.0), 60.0, /*lane_start=*/true),
+                               WaypointAt(mission, Vec2(0.0, 600.0), 60.0)});
+  mission.RunUntil(landed_s + 10.0);
+  EXPECT_EQ(vehicle.mode(), FlightMode::kLanded);
+  EXPECT_GE(vehicle.stats().commands_rejected, 1U);
+  // ...accepted on the crew's fresh one, and flown.
+  mission.RunUntil(landed_s + kSwapS + 1.0);
+  EXPECT_GT(mission.Truth(1).battery_fraction, 0.99);
+  radio::Command start;
+  start.type = radio::CommandType::kStartMission;
+  start.mission_id = 6;
+  mission.link.server().SendCommand(1, start);
+  RunUntilOr(mission, landed_s + kSwapS + 60.0,
+             [&] { return vehicle.mode() == FlightMode::kSearch; });
+  EXPECT_EQ(vehicle.mode(), FlightMode::kSearch);
+  EXPECT_EQ(vehicle.active_mission(), 6);
+}
+
 }  // namespace
 }  // namespace fireswarm::hil

@@ -232,6 +232,11 @@ TEST(ParseScenario, DefaultsMatchThePlannerAndTheRadio) {
   EXPECT_DOUBLE_EQ(s.fleet.altitude_m, planner_defaults.altitude_m);
   EXPECT_DOUBLE_EQ(s.fleet.speed_mps, planner_defaults.speed_mps);
   EXPECT_DOUBLE_EQ(s.fleet.endurance_s, planner_defaults.endurance_s);
+  EXPECT_DOUBLE_EQ(s.fleet.swap_s, planner_defaults.swap_s);
+  ASSERT_EQ(s.fleet.launch_sites.size(), 1U);
+  EXPECT_DOUBLE_EQ(s.fleet.launch_sites[0].position.lat_deg, s.fleet.launch.lat_deg);
+  EXPECT_DOUBLE_EQ(s.fleet.launch_sites[0].position.lon_deg, s.fleet.launch.lon_deg);
+  EXPECT_FALSE(s.fleet.launch_sites[0].drones.has_value());
   EXPECT_EQ(s.fleet.planner, planner::PlannerKind::kLawnmower);
   EXPECT_DOUBLE_EQ(s.fleet.stand_spacing_m, kDefaultStandSpacingM);
 
@@ -416,6 +421,34 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"IdsBeyond254", kArea + "fleet: {count: 3, first_id: 253}\n", "fleet.first_id",
                  "first_id + count - 1 = 255 is beyond the largest receiver ID 254"},
         BadInput{"FleetNotAMapping", kArea + "fleet: [1, 2]\n", "fleet", "must be a mapping"},
+        BadInput{"LaunchListEmpty", kArea + "fleet: {count: 2, launch: []}\n", "fleet.launch",
+                 "lists no launch site"},
+        BadInput{
+            "LaunchSiteLatitude",
+            kArea + "fleet: {count: 1, launch: [{lat: 46.2, lon: -74.6}, {lat: 95, lon: 0}]}\n",
+            "fleet.launch[1].lat", "must be in [-90, 90], got 95"},
+        BadInput{"LaunchSiteUnknownKey",
+                 kArea + "fleet: {count: 1, launch: [{lat: 46.2, lon: -74.6, drone: 1}]}\n",
+                 "fleet.launch[0].drone", "did you mean 'drones'?"},
+        BadInput{"LaunchSiteDronesOnSome",
+                 kArea + "fleet: {count: 2, launch: [{lat: 46.2, lon: -74.6, drones: 2}, "
+                         "{lat: 46.195, lon: -74.605}]}\n",
+                 "fleet.launch[1]", "give drones on every site or on none"},
+        BadInput{"LaunchSiteDronesSum",
+                 kArea + "fleet: {count: 2, launch: [{lat: 46.2, lon: -74.6, drones: 1}, "
+                         "{lat: 46.195, lon: -74.605, drones: 2}]}\n",
+                 "fleet.launch[1].drones", "the sites' drones sum to 3, not fleet.count 2"},
+        BadInput{"LaunchSiteDronesNegative",
+                 kArea + "fleet: {count: 2, launch: [{lat: 46.2, lon: -74.6, drones: -1}]}\n",
+                 "fleet.launch[0].drones", "must be in [0, 2], got -1"},
+        BadInput{
+            "LaunchSiteFarAway",
+            kArea + "fleet: {count: 1, launch: [{lat: 46.2, lon: -74.6}, {lat: 40, lon: 0}]}\n",
+            "fleet.launch[1]", "km"},
+        BadInput{"SwapZero", kArea + "fleet: {count: 2, swap_s: 0}\n", "fleet.swap_s",
+                 "must be in (0, 3600], got 0"},
+        BadInput{"SwapOverAnHour", kArea + "fleet: {count: 2, swap_s: 4000}\n", "fleet.swap_s",
+                 "got 4000"},
         BadInput{"LaunchLatitude", kArea + "fleet: {count: 1, launch: {lat: 95, lon: -74.6}}\n",
                  "fleet.launch.lat", "must be in [-90, 90], got 95"},
         BadInput{"LaunchMissingLon", kArea + "fleet: {count: 1, launch: {lat: 46.2}}\n",
@@ -589,6 +622,35 @@ TEST(MakeFleetSpec, CarriesTheFleetIntoThePlannersFrame) {
   EXPECT_DOUBLE_EQ(spec.altitude_m, 80.0);
   EXPECT_DOUBLE_EQ(spec.speed_mps, 12.0);
   EXPECT_DOUBLE_EQ(spec.endurance_s, 1200.0);
+}
+
+TEST(ParseScenario, LaunchIsAListOfSitesWithTheirDronesAndSwapS) {
+  const Scenario s = Parse(kArea +
+                           "fleet:\n  count: 3\n  swap_s: 120\n  launch:\n"
+                           "    - {lat: 46.191, lon: -74.609, drones: 1}\n"
+                           "    - {lat: 46.209, lon: -74.591, drones: 2}\n");
+  ASSERT_EQ(s.fleet.launch_sites.size(), 2U);
+  EXPECT_TRUE(s.fleet.launch_given);
+  EXPECT_DOUBLE_EQ(s.fleet.launch.lat_deg, 46.191);
+  EXPECT_DOUBLE_EQ(s.fleet.launch_sites[1].position.lat_deg, 46.209);
+  EXPECT_EQ(s.fleet.launch_sites[1].drones, 2);
+  EXPECT_DOUBLE_EQ(s.fleet.swap_s, 120.0);
+
+  const planner::FleetSpec spec = MakeFleetSpec(s);
+  ASSERT_EQ(spec.launch_points.size(), 2U);
+  const common::LatLon second =
+      s.area.frame.ToGeodetic({spec.launch_points[1].x(), spec.launch_points[1].y()});
+  EXPECT_NEAR(second.lat_deg, 46.209, 1e-9);
+  EXPECT_NEAR(second.lon_deg, -74.591, 1e-9);
+  EXPECT_EQ(spec.site_drones, (std::vector<int>{1, 2}));
+  EXPECT_DOUBLE_EQ(spec.swap_s, 120.0);
+
+  // Without counts the planner shares the drones out.
+  const Scenario shared = Parse(
+      kArea +
+      "fleet:\n  count: 2\n  launch: [{lat: 46.191, lon: -74.609}, {lat: 46.2, lon: -74.6}]\n");
+  EXPECT_EQ(MakeFleetSpec(shared).launch_points.size(), 2U);
+  EXPECT_TRUE(MakeFleetSpec(shared).site_drones.empty());
 }
 
 TEST(ScenarioNames, RoundTripTheEnums) {

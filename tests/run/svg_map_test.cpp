@@ -160,6 +160,26 @@ TEST(SvgMap, DrawsOnePathPerDroneInItsOwnColourNamedInTheLegend) {
   for (const std::string id : {"1", "2", "3"}) EXPECT_TRUE(legend_texts.contains(id)) << id;
 }
 
+TEST(SvgMap, MarksEveryLaunchSiteAndEachDronesSortiesInTheLegend) {
+  const Scenario scenario = ParseScenario(
+      std::string(kScenarioYaml)
+          .replace(std::string(kScenarioYaml).find("  launch: {"), std::string::npos,
+                   "  launch: [{lat: 46.1987, lon: -74.6028}, {lat: 46.2013, lon: -74.5972}]\n"),
+      "svg.yaml", fs::path("."));
+  Report report = TestReport(scenario);
+  report.vehicles[1].sorties_planned = 3;
+  report.vehicles[1].sorties_flown = 2;
+  report.vehicles[2].sorties_planned = 1;
+  report.vehicles[2].sorties_flown = 1;
+  const XmlDocument doc = ParsedSvg(SvgMap(report, scenario));
+  EXPECT_EQ(doc.Find("rect", "launch").size(), 2U);
+  std::set<std::string> legend_texts;
+  for (const XmlElement* text : doc.Find("text", "legend")) legend_texts.insert(text->text);
+  EXPECT_TRUE(legend_texts.contains("1: 2/3"));
+  EXPECT_TRUE(legend_texts.contains("2: 1/1"));
+  EXPECT_TRUE(legend_texts.contains("Drones (receiver ID: sorties flown/planned)"));
+}
+
 TEST(SvgMap, NorthIsUpEastIsRightAtTheScaleBarsScale) {
   const Scenario scenario = TestScenario();
   const XmlDocument doc = ParsedSvg(SvgMap(TestReport(scenario), scenario));

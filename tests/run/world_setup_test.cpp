@@ -1,11 +1,15 @@
-// The runner's world set-up: the missions' altitudes as the vehicles fly them.
+// The runner's world set-up: the missions' altitudes as the vehicles fly them,
+// and where the vehicles stand.
 #include "world_setup.hpp"
 
 #include <gtest/gtest.h>
 
 #include <iterator>
+#include <map>
 #include <set>
 #include <vector>
+
+#include "small_area.hpp"
 
 namespace fireswarm::run::internal {
 namespace {
@@ -56,6 +60,40 @@ TEST(InAltitudeLayers, SearchesInLayersAndFliesHomeAtAnAltitudeOfItsOwn) {
   for (auto it = std::next(return_altitudes.begin()); it != return_altitudes.end(); ++it) {
     EXPECT_GE(*it - *std::prev(it), kReturnLayerM - 1e-9);
   }
+}
+
+TEST(InAltitudeLayers, EverySortieEndsWithItsWayHome) {
+  std::vector<server::DroneMission> missions = SameRouteFor(2);
+  missions[1].waypoints.push_back(missions[1].waypoints.front());
+  missions[1].waypoints.push_back(missions[1].waypoints.back());
+  missions[1].sortie_starts = {3};  // sorties of 3 and 2 waypoints
+  const std::vector<server::DroneMission> out = InAltitudeLayers(missions);
+  ASSERT_EQ(out[1].waypoints.size(), 7U);
+  EXPECT_EQ(out[1].sortie_starts, (std::vector<std::size_t>{4}));
+  const std::vector<std::vector<radio::Waypoint>> sorties = server::SortiesOf(out[1]);
+  for (const std::vector<radio::Waypoint>& sortie : sorties) {
+    EXPECT_EQ(sortie.back().flags, 0);
+    EXPECT_DOUBLE_EQ(sortie.back().altitude_m, kFleetAltitudeM + kReturnLayerM);
+    EXPECT_DOUBLE_EQ(sortie.back().lat_deg, sortie[sortie.size() - 2].lat_deg);
+  }
+}
+
+TEST(StandPositions, EachDroneStandsAroundItsOwnSite) {
+  Scenario scenario = test::SmallArea("");
+  scenario.fleet.count = 3;
+  const common::EastNorth west{-300.0, -60.0};
+  const common::EastNorth east{300.0, -60.0};
+  const std::map<std::uint8_t, common::EastNorth> sites{{1, west}, {2, east}, {3, east}};
+  const std::map<int, sim2d::Vec2> stands = StandPositions(scenario, SameRouteFor(3), sites);
+  ASSERT_EQ(stands.size(), 3U);
+  // A site's only drone stands on it; two share a ring around theirs.
+  EXPECT_NEAR((stands.at(1) - sim2d::Vec2(west.east_m, west.north_m)).norm(), 0.0, 1e-9);
+  for (const int id : {2, 3}) {
+    const double from_east = (stands.at(id) - sim2d::Vec2(east.east_m, east.north_m)).norm();
+    EXPECT_GT(from_east, 1.0) << id;
+    EXPECT_LT(from_east, scenario.fleet.stand_spacing_m) << id;
+  }
+  EXPECT_GE((stands.at(2) - stands.at(3)).norm(), scenario.fleet.stand_spacing_m - 1e-9);
 }
 
 TEST(InAltitudeLayers, LeavesAnEmptyMissionEmpty) {

@@ -58,7 +58,7 @@ TEST(JournalFormat, EveryEventComesBackAsItWasWritten) {
       {0.5, 2, MissionLoaded{{MissionOf(4, 1), MissionOf(5, 1)}}},
       {1.0, 3,
        CommandAccepted{OperatorCommand::Kind::kRetaskVehicle, 4, {46.0, -74.5}, "look again"}},
-      {2.0, 4, PhaseChanged{4, DronePhase::kFlying}},
+      {2.0, 4, PhaseChanged{4, DronePhase::kFlying, 0, std::nullopt}},
       {3.0, 5, LanesHandedOver{5, "lost: not heard for 20 s", {MissionOf(4, 2)}, 2}},
       {4.0, 6, MissionStateChanged{MissionState::kRunning}},
       {5.0, 7, ReportFused{Observation()}},
@@ -87,12 +87,26 @@ TEST(JournalFormat, EveryEventComesBackAsItWasWritten) {
   EXPECT_EQ(handed.straight_joins, 2);
 }
 
+TEST(JournalFormat, SortiesComeBackWithTheMissionAndEachPhase) {
+  DroneMission mission = MissionOf(4, 1);
+  mission.sortie_starts = {1};
+  const JournalEntry loaded = RoundTrip({0.5, 2, MissionLoaded{{mission}}});
+  EXPECT_EQ(std::get<MissionLoaded>(loaded.event).drones.at(0).sortie_starts,
+            (std::vector<std::size_t>{1}));
+  const JournalEntry phase = RoundTrip(
+      {9.0, 3, PhaseChanged{4, DronePhase::kSwapping, 2, std::vector<std::size_t>{3, 7, 9}}});
+  const auto& changed = std::get<PhaseChanged>(phase.event);
+  EXPECT_EQ(changed.phase, DronePhase::kSwapping);
+  EXPECT_EQ(changed.sortie, 2U);
+  EXPECT_EQ(changed.sortie_starts, (std::vector<std::size_t>{3, 7, 9}));
+}
+
 TEST(JournalFormat, KeepsTheRecordNamesAndFieldsOfTheFormatBeforeTypes) {
   EXPECT_EQ(JournalKindOf({0.0, 1, CommandAccepted{OperatorCommand::Kind::kStart, 0, {}, "go"}}),
             "start");
   EXPECT_EQ(JournalKindOf({0.0, 1, CommandAccepted{OperatorCommand::Kind::kReturnAll, 0, {}, ""}}),
             "return_all");
-  EXPECT_EQ(JournalDataOf({0.0, 7, PhaseChanged{4, DronePhase::kFlying}}),
+  EXPECT_EQ(JournalDataOf({0.0, 7, PhaseChanged{4, DronePhase::kFlying, 0, std::nullopt}}),
             nlohmann::json({{"vehicle", 4}, {"phase", 2}, {"radio_seq", 7}}));
   // Positions and covariances stay (north, east) in the file.
   FireObservation o = Observation();

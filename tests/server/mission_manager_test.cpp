@@ -136,53 +136,164 @@ TEST(MissionManager, RefusesTwoMissionsForOneVehicle) {
   EXPECT_THROW(MissionManager(scheduler, {Mission(1, 5), Mission(1, 6)}), std::invalid_argument);
 }
 
-TEST(ToDroneMissions, CarriesEveryWaypointWithLaneFlagsAltitudeAndSpeed) {
-  planner::Plan plan;
-  planner::DronePlan drone;
-  drone.receiver_id = 7;
-  drone.waypoints.push_back({{0, 0}, {46.0, -74.0}, false, false});
-  drone.waypoints.push_back({{100, 0}, {46.0, -73.99}, false, true});
-  drone.waypoints.push_back({{100, 80}, {46.001, -73.99}, false, false});
-  plan.drones.push_back(drone);
-  const std::vector<DroneMission> missions = ToDroneMissions(plan, 9, 60.0, 8.0);
-  ASSERT_EQ(missions.size(), 1u);
-  EXPECT_EQ(missions[0].vehicle, 7);
-  EXPECT_EQ(missions[0].mission_id, 9);
-  ASSERT_EQ(missions[0].waypoints.size(), 3u);
-  EXPECT_EQ(missions[0].waypoints[1].flags, 1);
-  EXPECT_EQ(missions[0].waypoints[0].flags, 0);
-  EXPECT_DOUBLE_EQ(missions[0].waypoints[2].lat_deg, 46.001);
-  EXPECT_DOUBLE_EQ(missions[0].waypoints[2].altitude_m, 60.0);
-  EXPECT_DOUBLE_EQ(missions[0].waypoints[2].speed_mps, 8.0);
-
-  plan.drones[0].receiver_id = 255;
-  EXPECT_THROW(ToDroneMissions(plan, 9, 60.0, 8.0), std::invalid_argument);
+// What a vehicle's telemetry says about its sortie: the radio mission it flies,
+// the waypoint, the mode and the battery.
+void Report(FakeVehicle& vehicle, std::uint16_t mission_id, std::uint16_t waypoint,
+            radio::FlightMode mode, int battery_percent, bool low_battery = false) {
+  radio::Telemetry telemetry;
+  telemetry.mission_id = mission_id;
+  telemetry.waypoint_index = waypoint;
+  telemetry.mode = mode;
+  telemetry.battery_percent = static_cast<std::uint8_t>(battery_percent);
+  if (low_battery) telemetry.flags = radio::telemetry_flags::kLowBattery;
+  vehicle.endpoint().SetTelemetry(telemetry);
 }
 
-TEST(WithoutLaunchSite, DropsTheLaunchAtEitherEndAndKeepsReturnsBetweenSorties) {
-  const common::LocalFrame frame{common::LatLon{46.0, -74.5}};
-  const common::EastNorth launch{10.0, 20.0};
-  const auto at = [&](double east_m, double north_m) {
-    const common::LatLon p = frame.ToGeodetic({east_m, north_m});
-    radio::Waypoint w;
-    w.lat_deg = p.lat_deg;
-    w.lon_deg = p.lon_deg;
-    return w;
-  };
-  DroneMission mission;
-  mission.vehicle = 1;
-  // launch, lane, return between sorties, lane, launch, launch again
-  mission.waypoints = {at(10, 20),   at(300, 20), at(10.2, 20),
-                       at(300, 100), at(10, 20),  at(10, 20.5)};
-  DroneMission idle;
-  idle.vehicle = 2;
-  idle.waypoints = {at(10, 20), at(10, 20)};
-  const std::vector<DroneMission> out = WithoutLaunchSite({mission, idle}, frame, launch);
-  ASSERT_EQ(out[0].waypoints.size(), 3u);
-  EXPECT_EQ(out[0].waypoints[0], mission.waypoints[1]);
-  EXPECT_EQ(out[0].waypoints[1], mission.waypoints[2]) << "the return between sorties stays";
-  EXPECT_EQ(out[0].waypoints[2], mission.waypoints[3]);
-  EXPECT_EQ(out[1].waypoints.size(), 1u) << "a route of only the launch keeps one waypoint";
+// 12 waypoints in three sorties of 4 (radio missions 42, 43, 44).
+DroneMission ThreeSorties(std::uint8_t vehicle) {
+  DroneMission mission = Mission(vehicle, 12);
+  mission.sortie_starts = {4, 8};
+  return mission;
+}
+
+TEST(MissionManager, UploadsTheNextSortieOnlyOnceTheLandedVehicleHasAFreshPack) {
+  Air air(0.0, radio::LinkMode::kSlots);
+  air.Add(1);
+  const DroneMission mission = ThreeSorties(1);
+  ManagedScheduler server = Manage(air.mode, {1}, {mission});
+  const MissionManager& manager = *server.manager;
+  FakeVehicle& vehicle = air.vehicle(1);
+  air.Run(server, kLimit, [&] { return manager.AllStarted(); });
+  ASSERT_EQ(manager.progress(1).phase, DronePhase::kFlying);
+  // Only the first sortie went up, as mission 42.
+  EXPECT_EQ(vehicle.waypoints(),
+            std::vector<radio::Waypoint>(mission.waypoints.begin(), mission.waypoints.begin() + 4));
+  EXPECT_EQ(manager.progress(1).sortie_count, 3U);
+
+  // Landed after it, the pack nearly empty: it waits for the swap.
+  Report(vehicle, 42, 3, radio::FlightMode::kLanded, 30);
+  Nanos now = air.Run(server, air.channel().now() + kLimit,
+                      [&] { return manager.progress(1).phase == DronePhase::kSwapping; });
+  EXPECT_EQ(manager.progress(1).sorties_flown, 1U);
+  EXPECT_EQ(manager.progress(1).waypoint_index, 3U);
+  // Still landed with a low pack a minute later: nothing goes up.
+  const Nanos swap_start = now;
+  now = air.Run(server, swap_start + std::chrono::seconds(60), [] { return false; });
+  EXPECT_EQ(manager.progress(1).phase, DronePhase::kSwapping);
+  EXPECT_EQ(vehicle.starts_accepted(), 1);
+
+  // A fresh pack: the second sortie goes up as mission 43 and starts.
+  Report(vehicle, 42, 3, radio::FlightMode::kLanded, 100);
+  air.Run(server, now + kLimit, [&] {
+    return manager.progress(1).phase == DronePhase::kFlying && manager.progress(1).sortie == 1;
+  });
+  ASSERT_EQ(manager.progress(1).sortie, 1U);
+  EXPECT_EQ(vehicle.starts_accepted(), 2);
+  EXPECT_EQ(vehicle.commands().back().mission_id, 43);
+  EXPECT_EQ(vehicle.waypoints(), std::vector<radio::Waypoint>(mission.waypoints.begin() + 4,
+                                                              mission.waypoints.begin() + 8));
+  // Its telemetry indexes the sortie; progress counts the whole route.
+  Report(vehicle, 43, 2, radio::FlightMode::kSearch, 80);
+  air.Run(server, air.channel().now() + kLimit,
+          [&] { return manager.progress(1).waypoint_index == 6; });
+  EXPECT_EQ(manager.progress(1).waypoint_index, 6U);
+  EXPECT_EQ(manager.Remaining(1, /*from_leg_start=*/false).size(), 6U)
+      << "this sortie and the next";
+  EXPECT_EQ(manager.LastMissionId(), 44);
+}
+
+TEST(MissionManager, TheLastSortiesLandingIsDoneAndStopSortiesEndsTheWait) {
+  Air air(0.0, radio::LinkMode::kSlots);
+  air.Add(1);
+  air.Add(2);
+  DroneMission one = Mission(1, 4);  // one sortie
+  ManagedScheduler server = Manage(air.mode, {1, 2}, {one, ThreeSorties(2)});
+  MissionManager& manager = *server.manager;
+  air.Run(server, kLimit, [&] { return manager.AllStarted(); });
+  Report(air.vehicle(1), 42, 3, radio::FlightMode::kLanded, 30);
+  Report(air.vehicle(2), 42, 3, radio::FlightMode::kLanded, 30);
+  air.Run(server, air.channel().now() + kLimit, [&] {
+    return manager.progress(1).phase == DronePhase::kDone &&
+           manager.progress(2).phase == DronePhase::kSwapping;
+  });
+  EXPECT_EQ(manager.progress(1).phase, DronePhase::kDone);
+  ASSERT_EQ(manager.progress(2).phase, DronePhase::kSwapping);
+  // Recalled (return all, abort): no next sortie, even on a fresh pack.
+  manager.StopSorties();
+  EXPECT_EQ(manager.progress(2).phase, DronePhase::kDone);
+  Report(air.vehicle(2), 42, 3, radio::FlightMode::kLanded, 100);
+  air.Run(server, air.channel().now() + std::chrono::seconds(30), [] { return false; });
+  EXPECT_EQ(air.vehicle(2).starts_accepted(), 1);
+}
+
+TEST(MissionManager, ASortieCutShortByALowBatteryIsResumedFromTheLegItWasOn) {
+  Air air(0.0, radio::LinkMode::kSlots);
+  air.Add(1);
+  DroneMission mission = Mission(1, 10);
+  mission.sortie_starts = {6};  // sorties of 6 and 4
+  ManagedScheduler server = Manage(air.mode, {1}, {mission});
+  const MissionManager& manager = *server.manager;
+  air.Run(server, kLimit, [&] { return manager.AllStarted(); });
+  // Home on a low battery while flying to waypoint 3 of 6.
+  Report(air.vehicle(1), 42, 3, radio::FlightMode::kLanded, 22, /*low_battery=*/true);
+  air.Run(server, air.channel().now() + kLimit,
+          [&] { return manager.progress(1).phase == DronePhase::kSwapping; });
+  EXPECT_EQ(manager.progress(1).sortie_count, 3U) << "the rest is a sortie of its own";
+  EXPECT_EQ(manager.mission_of(1).sortie_starts, (std::vector<std::size_t>{2, 6}));
+  // After the swap: from waypoint 2 (the leg 2 -> 3 it was on) to 5, then the old second.
+  Report(air.vehicle(1), 42, 3, radio::FlightMode::kLanded, 100);
+  air.Run(server, air.channel().now() + kLimit, [&] {
+    return manager.progress(1).phase == DronePhase::kFlying && manager.progress(1).sortie == 1;
+  });
+  EXPECT_EQ(
+      air.vehicle(1).waypoints(),
+      std::vector<radio::Waypoint>(mission.waypoints.begin() + 2, mission.waypoints.begin() + 6));
+}
+
+TEST(MissionManager, AMissionHandedToADroneBetweenSortiesWaitsForItsPack) {
+  Air air(0.0, radio::LinkMode::kSlots);
+  air.Add(1);
+  ManagedScheduler server = Manage(air.mode, {1}, {ThreeSorties(1)});
+  MissionManager& manager = *server.manager;
+  FakeVehicle& vehicle = air.vehicle(1);
+  air.Run(server, kLimit, [&] { return manager.AllStarted(); });
+  Report(vehicle, 42, 3, radio::FlightMode::kLanded, 30);
+  air.Run(server, air.channel().now() + kLimit,
+          [&] { return manager.progress(1).phase == DronePhase::kSwapping; });
+  // Its two sorties to come plus handed-over lanes, as the handover builds it.
+  DroneMission more = Mission(1, 10);
+  more.mission_id = 50;
+  more.sortie_starts = {4};
+  manager.Replace(more);
+  EXPECT_EQ(manager.progress(1).phase, DronePhase::kSwapping);
+  EXPECT_EQ(manager.progress(1).sorties_flown, 1U);
+  EXPECT_EQ(manager.Remaining(1, /*from_leg_start=*/false), more.waypoints);
+  air.Run(server, air.channel().now() + std::chrono::seconds(30), [] { return false; });
+  EXPECT_EQ(vehicle.starts_accepted(), 1) << "nothing starts on the old pack";
+  Report(vehicle, 42, 3, radio::FlightMode::kLanded, 100);
+  air.Run(server, air.channel().now() + kLimit,
+          [&] { return manager.progress(1).phase == DronePhase::kFlying; });
+  EXPECT_EQ(vehicle.commands().back().mission_id, 50);
+  EXPECT_EQ(vehicle.waypoints(),
+            std::vector<radio::Waypoint>(more.waypoints.begin(), more.waypoints.begin() + 4));
+}
+
+TEST(MissionManager, RestoresADroneBetweenSortiesWithoutUploadingAgain) {
+  radio::MasterScheduler scheduler(radio::SchedulerConfig{});
+  scheduler.AddVehicle(1, 1.0);
+  MissionManager manager(scheduler, {ThreeSorties(1)});
+  manager.RestorePhase(1, DronePhase::kSwapping, 1, std::vector<std::size_t>{4, 6, 8});
+  manager.Begin();
+  const DroneProgress& progress = manager.progress(1);
+  EXPECT_EQ(progress.phase, DronePhase::kSwapping);
+  EXPECT_EQ(progress.sortie, 1U);
+  EXPECT_EQ(progress.sorties_flown, 2U);
+  EXPECT_EQ(progress.sortie_count, 4U);
+  EXPECT_EQ(progress.waypoint_index, 4U);
+  EXPECT_EQ(scheduler.stats().requests_sent, 0U);
+  EXPECT_THROW(manager.RestorePhase(1, DronePhase::kFlying, 9), std::out_of_range);
+  EXPECT_THROW(manager.RestorePhase(1, DronePhase::kFlying, 1, std::vector<std::size_t>{4, 40}),
+               std::invalid_argument);
 }
 
 }  // namespace

@@ -23,7 +23,7 @@ using testing::Air;
 using testing::kFrame;
 using testing::kSecond;
 
-planner::Polygon Rect(double x0, double y0, double x1, double y1) {
+planner::Polygon AreaRect(double x0, double y0, double x1, double y1) {
   planner::Polygon p{{{x0, y0}, {x0, y1}, {x1, y1}, {x1, y0}, {x0, y0}}};
   boost::geometry::correct(p);
   return p;
@@ -32,7 +32,7 @@ planner::Polygon Rect(double x0, double y0, double x1, double y1) {
 // A 200 m square searched with the seed camera straight down: 1,600 cells of 5 m.
 ServerConfig SquareConfig() {
   ServerConfig config;
-  config.area = {Rect(0, 0, 200, 200)};
+  config.area = {AreaRect(0, 0, 200, 200)};
   config.camera = common::CameraModelByName("seed");
   config.camera_pitch_deg = -90.0;
   return config;

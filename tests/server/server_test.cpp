@@ -397,8 +397,8 @@ TEST(Server, AHandedOverLaneIsJoinedAroundANoFlyZone) {
 }
 
 TEST(Server, RestoreNamesTheBadEntry) {
-  const std::vector<JournalEntry> journal{{0.0, 1, VehicleAdded{1}},
-                                          {1.0, 1, PhaseChanged{1, DronePhase::kFlying}}};
+  const std::vector<JournalEntry> journal{
+      {0.0, 1, VehicleAdded{1}}, {1.0, 1, PhaseChanged{1, DronePhase::kFlying, 0, std::nullopt}}};
   try {
     (void)Server::Restore(ServerConfig{}, kFrame, journal);
     FAIL() << "a phase before any mission was accepted";

@@ -237,6 +237,35 @@ TEST(Multirotor, EmptyBatteryOnTheGroundCannotTakeOff) {
   EXPECT_EQ(CountEvents(world, EventKind::kTakeOff), 0);
 }
 
+TEST(Multirotor, TheGroundCrewSwapsThePackSwapSecondsAfterALanding) {
+  WorldConfig config;
+  config.battery_swap_s = 60.0;
+  VehicleConfig vehicle;
+  vehicle.id = 1;
+  config.vehicles.push_back(vehicle);
+  World world(config);
+  world.RunFor(100.0);  // standing from the start is no landing: no swap
+  EXPECT_EQ(CountEvents(world, EventKind::kBatterySwap), 0);
+  TakeOffTo(world, 1, 10.0);
+  world.SetCommand(1, Hover());
+  world.RunFor(20.0);
+  RunWith(world, 30.0, [&] { world.SetCommand(1, Climb(-1.0)); });
+  ASSERT_EQ(world.Truth(1).phase, FlightPhase::kOnGround);
+  ASSERT_EQ(CountEvents(world, EventKind::kLanding), 1);
+  const double landed_s = testing::EventsOf(world, EventKind::kLanding)[0].time_s;
+  const double used = world.Truth(1).battery_fraction;
+  EXPECT_LT(used, 1.0);
+  world.SetCommand(1, ActuatorCommand{});  // disarmed on the ground
+  world.RunFor(landed_s + 59.0 - world.time_s());
+  EXPECT_EQ(CountEvents(world, EventKind::kBatterySwap), 0);
+  world.RunFor(2.0);
+  ASSERT_EQ(CountEvents(world, EventKind::kBatterySwap), 1);
+  EXPECT_NEAR(testing::EventsOf(world, EventKind::kBatterySwap)[0].time_s, landed_s + 60.0, 0.02);
+  EXPECT_GT(world.Truth(1).battery_fraction, 0.9999);
+  world.RunFor(120.0);  // once per landing
+  EXPECT_EQ(CountEvents(world, EventKind::kBatterySwap), 1);
+}
+
 TEST(Multirotor, SteadyWindCarriesAHoveringVehicleAtWindSpeed) {
   WorldConfig config;
   config.wind.speed_mps = 5.0;

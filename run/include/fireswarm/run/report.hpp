@@ -91,8 +91,14 @@ struct RadioOutcome {
 };
 
 struct VehicleOutcome {
-  double distance_m = 0.0;            ///< flown, truth
-  double battery_used = 0.0;          ///< fraction of a full charge, truth
+  double distance_m = 0.0;    ///< flown, truth
+  double battery_used = 0.0;  ///< fraction of a full charge of the pack in at the end, truth
+  int sorties_planned = 0;    ///< in the plan (DronePlan::sorties)
+  /// Ended with a landing, by the server's count (a sortie cut short counts, and
+  /// its rest is one more); a handed-over mission's sorties included.
+  int sorties_flown = 0;
+  int sortie = 0;                     ///< in the air at the end: the one flown, from 1; else 0
+  int battery_swaps = 0;              ///< packs the simulator's ground crew put in, truth
   std::string final_state;            ///< flight mode at the end ("landed", "search", ...)
   std::vector<common::LatLon> track;  ///< truth positions every few seconds, for the map
 };

@@ -39,6 +39,12 @@ struct RunOptions {
   /// take effect from the next step on, as a command arriving then would.
   /// An exception it throws ends the run and leaves RunScenario.
   std::function<void(double t_s, server::Server& server)> on_step;
+  /// A restart drill: called after every step (after on_step) until it returns
+  /// true, once; the server is then replaced by one restored from the journal
+  /// its predecessor wrote (through the journal file's record format, as
+  /// `fireswarm serve --journal` after a crash), which flies the rest of the
+  /// mission. Empty: no restart.
+  std::function<bool(double t_s, const server::Server& server)> restart_server_when;
   /// After the mission is complete, the run goes on at most this long for fire
   /// reports still queued on the vehicles to reach the server, s.
   double drain_s = 30.0;
@@ -58,6 +64,7 @@ struct RunResult {
   /// sim2d's state hash at the end (truth, fire, camera frames): a determinism check.
   std::uint64_t state_hash = 0;
   std::string mission_state;  ///< the server's mission state at the end ("complete", ...)
+  int server_restarts = 0;    ///< by RunOptions::restart_server_when
 };
 
 /// Plans the search (planner::PlanSearch with the fleet's planner and the

@@ -77,13 +77,29 @@ inline constexpr std::string_view kDefaultCamera = "seed";
 /// let them close to 1.5 m; docs/scenario.md).
 inline constexpr double kDefaultStandSpacingM = 20.0;
 
+/// One launch site of the fleet.
+struct LaunchSiteConfig {
+  common::LatLon position;
+  /// How many drones fly from it; nullopt: the planner shares the drones out.
+  /// Given on every site or on none, summing to the fleet's count.
+  std::optional<int> drones;
+};
+
 struct FleetConfig {
   int count = 0;     ///< drones, 1..254 (required)
   int first_id = 1;  ///< receiver IDs are first_id .. first_id + count - 1 <= 254
-  /// Launch site (vehicles stand a few metres apart around it). When the file
-  /// gives none: planner::DefaultLaunchPoint of the area, and launch_given false.
+  /// The first launch site (vehicles stand a few metres apart around theirs).
+  /// When the file gives none: planner::DefaultLaunchPoint of the area, and
+  /// launch_given false.
   common::LatLon launch;
   bool launch_given = false;
+  /// Every launch site, `launch` first; one at least after loading (`fleet.launch`
+  /// is one {lat, lon} or a list of {lat, lon, drones}).
+  std::vector<LaunchSiteConfig> launch_sites;
+  /// On the ground between two sorties: landing, battery swap, take-off, s. The
+  /// planner counts it; the simulator's ground crew puts a full pack in this long
+  /// after each landing.
+  double swap_s = 300.0;
   const common::CameraModel* camera = nullptr;  ///< never null after loading
   double camera_pitch_deg = -90.0;              ///< from the horizon, -90 straight down
   double altitude_m = 60.0;                     ///< above ground
@@ -205,9 +221,9 @@ Scenario ParseScenario(std::string_view text, const std::string& source_name,
 /// Throws ScenarioError as ParseScenario, and when the file cannot be read.
 Scenario LoadScenario(const std::filesystem::path& path);
 
-/// The planner's view of the fleet: receiver IDs, the launch point in the area's
-/// local frame (one for all), altitude, speed, endurance and camera; the planner's
-/// own defaults for the rest.
+/// The planner's view of the fleet: receiver IDs, the launch sites in the area's
+/// local frame (with their drone counts when the file gives them), altitude,
+/// speed, endurance, swap time and camera; the planner's own defaults for the rest.
 planner::FleetSpec MakeFleetSpec(const Scenario& scenario);
 
 }  // namespace fireswarm::run

@@ -44,10 +44,15 @@ struct CommandAccepted {
   std::int32_t command_id = 0;
 };
 
-/// A drone's phase changed.
+/// A drone's phase changed (a new sortie starts with kUploading).
 struct PhaseChanged {
   std::uint8_t vehicle = 0;
   DronePhase phase = DronePhase::kUploading;
+  std::size_t sortie = 0;  ///< DroneProgress::sortie, of the mission it has then
+  /// Where its mission's sorties after the first begin then (DroneMission::
+  /// sortie_starts, which a sortie cut short changes); nullopt: as loaded
+  /// (journals written before sorties).
+  std::optional<std::vector<std::size_t>> sortie_starts;
 };
 
 /// A lost drone was given up and its lanes went to others as new missions.

@@ -52,6 +52,12 @@ struct TaskView {
   int lane_count = 0;  ///< lanes in its mission; 0 without one
   /// Share of its mission's waypoints passed, [0, 1]; 0 without a mission.
   double progress_fraction = 0.0;
+  /// Sorties: the one going up or flown now, from 1 (0 while on the ground
+  /// between sorties, done or without a mission); flown so far; in all (flown
+  /// plus those still to fly, a handed-over mission's included).
+  int sortie = 0;
+  int sorties_flown = 0;
+  int sortie_count = 0;
 };
 
 /// What `vehicle` (registered) does at `now_s` (mission seconds). In order: a drone

@@ -12,6 +12,7 @@ enum class EventKind {
   kTakeOff,
   kLanding,       ///< a soft touch-down
   kBatteryEmpty,  ///< the charge reached zero; the motors stop
+  kBatterySwap,   ///< the ground crew put in a full pack (WorldConfig::battery_swap_s)
 };
 
 /// One event. `vehicle_b` is 0 for events of one vehicle.

@@ -51,6 +51,10 @@ struct WorldConfig {
   WindParams wind;
   CollisionParams collision;
   std::vector<VehicleConfig> vehicles;  ///< added by the World constructor
+  /// The ground crew: a vehicle still on the ground this long after a soft
+  /// landing gets a full pack (a kBatterySwap event), once per landing, s. Driven
+  /// by simulated time only. 0: no crew, a pack is never swapped.
+  double battery_swap_s = 0.0;
 
   /// Throws std::invalid_argument naming the first bad field and its value, e.g.
   /// "vehicle 3: multirotor.mass_kg must be > 0, got -1". Duplicate IDs are refused.
