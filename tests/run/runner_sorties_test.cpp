@@ -179,8 +179,9 @@ TEST(RunScenarioSorties, ARestartedServerResumesAtTheSortieItWasIn) {
   }
 }
 
-// Three drones, two sorties each; vehicle 2 is gone for good at 330 s, while
-// it waits on the ground for its pack after its first sortie (302 - 416 s).
+// Three drones in short sorties (how many each flies is the planner's business);
+// vehicle 2 is gone for good at 330 s, while it waits on the ground for its pack
+// after its first sortie (the test checks that premise).
 constexpr const char* kLostBetweenSorties = R"(
 name: sorties_lost
 seed: 5
@@ -209,8 +210,8 @@ TEST(RunScenarioSorties, ADroneLostBetweenSortiesLeavesItsLaterSortiesToTheOther
   const Report& report = result.report;
   EXPECT_EQ(report.vehicles.at(2).final_state, "lost");
   EXPECT_EQ(report.vehicles.at(2).sorties_flown, 1);
+  EXPECT_GE(report.vehicles.at(2).sorties_planned, 2) << "vehicle 2 had a sortie left";
   for (const int id : {1, 3}) {
-    EXPECT_GE(report.vehicles.at(id).sorties_planned, 2) << "vehicle " << id;
     EXPECT_GE(report.vehicles.at(id).sorties_flown, report.vehicles.at(id).sorties_planned);
     EXPECT_EQ(report.vehicles.at(id).final_state, "landed");
   }
