@@ -1,5 +1,5 @@
-// Sweep lanes: the straight passes of a boustrophedon over one cell, and the
-// rotated "lane frame" they are computed in (lanes run along its x axis).
+// The rotated "lane frame" lanes are computed in (they run along its x axis), and
+// where a horizontal line crosses a polygon.
 #pragma once
 
 #include <utility>

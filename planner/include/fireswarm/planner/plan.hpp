@@ -86,33 +86,33 @@ struct Plan {
   /// half the footprint width of any flown segment (lanes, turns and transits).
   double coverage = 0.0;
   double makespan_s = 0.0;  ///< the slowest drone's time, all sorties, turns included
-  /// A lower bound on the makespan: the largest, over distances r, of
-  /// A(r) / (N * sweep width * speed) + 2 * max(0, r - footprint / 2) / speed,
-  /// where A(r) is the region's area farther than r from the nearest launch point
-  /// (it can only be seen by a drone that got that far and must come back). At
-  /// r = 0 it is area / (N * sweep * speed); at the region's distance from the
-  /// launches it adds that unavoidable round trip. Ground time between sorties
-  /// is not counted (nor in makespan_s).
+  /// A lower bound on the makespan from the region, the sites and the fleet alone
+  /// (planner/src/lower_bound.hpp): the largest of the busiest drone's sweep with
+  /// the swaps its sorties force, the busiest far drone's at every distance from
+  /// the nearest site, and the fleet's flight counted layer by layer (sorties that
+  /// must reach beyond each distance fly out to it and back), swaps included.
   double lower_bound_s = 0.0;
   std::string lower_bound_basis;   ///< which term of the bound gave lower_bound_s, in words
   double nofly_violation_m = 0.0;  ///< path metres strictly inside no-fly zones (0 when correct)
   double planning_seconds = 0.0;   ///< wall time PlanSearch took
 };
 
-/// Plans the search: one boustrophedon route over the region (coverage.hpp,
-/// SweepRoutes: one per candidate sweep direction, the one whose partition gives
-/// the shortest longest share kept), cut into contiguous shares of equal estimated
-/// time per drone, transit from and back to each launch point included, around
-/// no-fly zones (partition.hpp), flown in
-/// sorties when a share exceeds the endurance (sorties.hpp). With kOmpl each
-/// drone's share region is covered by CoverOmpl instead of its lanes.
+/// Plans the search. Lanes are laid over the whole region (one sweep direction at
+/// a time), grouped into stripes, walked as a snake and cut into sortie units (a
+/// lane may be split between two sorties); units go to drones and drones to launch
+/// sites so that the fleet finishes together; each sortie flies out of its site
+/// and back, every transit around the no-fly zones (TransitPlanner), with a swap
+/// of swap_s between sorties. The sweep direction, the sorties per drone, the
+/// stripe height and the cut with the shortest makespan are kept. With kOmpl
+/// each sortie's region is covered by the OMPL variant instead of its lanes.
 /// Deterministic for a given `seed`. Throws std::invalid_argument with a message
 /// naming the field when the fleet is unusable (receiver_ids empty, repeated or
-/// outside 1..254; launch_points not 1 or N, or inside a no-fly zone; speed_mps,
-/// endurance_s or altitude_m <= 0; turn_cost_s < 0; no camera; camera_pitch_deg
+/// outside 1..254; no launch_points, or one inside a no-fly zone; site_drones
+/// not one count >= 0 per site adding up to the fleet; speed_mps, endurance_s or
+/// altitude_m <= 0; swap_s or turn_cost_s < 0; no camera; camera_pitch_deg
 /// outside [-90, 0); side_overlap outside [0, 1)) or the area is empty, and
-/// std::runtime_error naming endurance_s when the plan cannot fit the endurance
-/// even with sorties (one lane and the transits to and from it take longer).
+/// std::runtime_error naming endurance_s, the farthest point (lat, lon) and the
+/// range needed when some point is out of reach from every site.
 Plan PlanSearch(const SearchArea& area, const FleetSpec& fleet,
                 PlannerKind kind = PlannerKind::kLawnmower, unsigned seed = 1);
 
