@@ -120,7 +120,6 @@ std::optional<Assignment> Greedy(const std::vector<std::vector<double>>& t,
     owner[move_u] = move_to;
   }
   for (std::size_t u = 0; u < units; ++u) out.drone_units[owner[u]].push_back(u);
-  out.drone_s = loads.seconds;
   out.makespan_s = *std::max_element(loads.seconds.begin(), loads.seconds.end());
   return out;
 }

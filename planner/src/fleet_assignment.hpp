@@ -10,7 +10,6 @@ namespace fireswarm::planner {
 struct Assignment {
   std::vector<std::size_t> drone_site;                ///< per drone: index of its site
   std::vector<std::vector<std::size_t>> drone_units;  ///< per drone: its units in flying order
-  std::vector<double> drone_s;                        ///< per drone: flights and swaps
   double makespan_s = 0.0;
 };
 

@@ -304,7 +304,7 @@ std::vector<SortieUnit> CutSortieUnitsByWork(const LaneField& field, std::size_t
     if (lane_m <= 0.0) continue;
     auto unit_of = [&](double x_lo, double x_hi) {
       SortieUnit unit;
-      unit.blocks = {Block{piece.first_row, piece.end_row, x_lo, x_hi, piece.eastward}};
+      unit.blocks = {Block{piece.first_row, piece.end_row, x_lo, x_hi}};
       const double y = field.rows[piece.first_row].y_m;
       Orient(field, unit, NearestSite(field.frame.ToLocal(Point{(x_lo + x_hi) / 2.0, y}), sites),
              spec);

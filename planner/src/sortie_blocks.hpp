@@ -20,8 +20,6 @@ struct Block {
   std::size_t end_row = 0;
   double x_lo_m = 0.0;
   double x_hi_m = 0.0;
-  /// The way the stripe is walked (x_lo_m to x_hi_m when eastward).
-  bool eastward = true;
 };
 
 /// One straight pass over a row of a block, local frame.
