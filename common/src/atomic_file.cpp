@@ -11,7 +11,7 @@
 
 namespace fireswarm::common {
 
-void WriteFileAtomically(const std::filesystem::path& path, std::string_view text) {
+void WriteFileAtomically(const std::filesystem::path& path, std::string_view text, mode_t mode) {
   // Same directory, so the rename is atomic; per process, so two writers of one
   // file do not share a temporary.
   std::filesystem::path temporary = path;
@@ -21,7 +21,10 @@ void WriteFileAtomically(const std::filesystem::path& path, std::string_view tex
     ::unlink(temporary.c_str());
     throw std::runtime_error(message);
   };
-  const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  // A temporary left by a crashed process of the same ID may have other
+  // permissions: remove it, and create ours fresh (O_EXCL) so `mode` holds.
+  ::unlink(temporary.c_str());
+  const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, mode);
   if (fd < 0) fail("cannot create " + temporary.string());
   std::size_t written = 0;
   while (written < text.size()) {
