@@ -77,6 +77,15 @@ void Vehicle::HoldHere(double altitude_m) {
   StartRoute({here}, 0);
 }
 
+double Vehicle::ReturnSpeedMps() const {
+  const Mission* mission = missions_.IsComplete(active_mission_) ? missions_.complete() : nullptr;
+  if (mission != nullptr && !mission->waypoints.empty()) {
+    const std::size_t index = std::min(resume_index_, mission->waypoints.size() - 1);
+    if (mission->waypoints[index].speed_mps > 0.0) return mission->waypoints[index].speed_mps;
+  }
+  return 0.0;  // the navigator's cruise speed (nav.cruise_speed_mps)
+}
+
 double Vehicle::ClimbOutAltitudeM() const {
   const Mission* mission = missions_.IsComplete(active_mission_) ? missions_.complete() : nullptr;
   if (mission != nullptr && !mission->waypoints.empty() &&
@@ -129,11 +138,14 @@ void Vehicle::EnterMode(FlightMode mode, Nanos now) {
       break;
     case FlightMode::kReturnToLaunch: {
       // At the altitude it was flying to (its mission's return altitude, its
-      // layer), never below the take-off altitude.
+      // layer), never below the take-off altitude; at the speed its mission was
+      // flown at (the planner counts the way home at that speed), else at the
+      // cruise speed.
       RoutePoint home;
       home.position = home_.value_or(estimator_.position());
       home.altitude_m =
           std::max(navigation_setpoint_.altitude_m, Param(ParamId::kTakeoffAltitudeM));
+      home.speed_mps = ReturnSpeedMps();
       StartRoute({home}, 0);
       break;
     }

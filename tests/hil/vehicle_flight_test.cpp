@@ -197,6 +197,34 @@ TEST(VehicleFlight, FliesHomeAtTheAltitudeItsMissionEndsAt) {
   EXPECT_NEAR(mission.Truth(1).altitude_m, kReturnM, 2.5);  // baro bias and noise
 }
 
+TEST(VehicleFlight, FliesHomeAtTheSpeedItsMissionWasFlownAt) {
+  // The planner counts the way home at the mission's speed: a vehicle whose
+  // cruise-speed parameter is slower must not fly home slower (a real boundary's
+  // 40-minute sortie lost 4.5 min per return at the default 8 m/s).
+  constexpr double kMissionSpeedMps = 12.0;
+  Mission mission(OneVehicleWorld());
+  agents::Vehicle& vehicle = mission.AddVehicle(VehicleOne());
+  mission.RunUntil(1.0);
+  radio::Waypoint out = WaypointAt(mission, Vec2(0.0, 900.0), kAltitudeM);
+  out.speed_mps = kMissionSpeedMps;
+  mission.link.UploadAndStart(1, 7, {out});
+  testing::RunUntilOr(mission, 300.0, [&] { return mission.Truth(1).position_m.y() > 450.0; });
+  const double out_mps = mission.Truth(1).velocity_mps.norm();
+  testing::RunUntilOr(mission, 300.0,
+                      [&] { return vehicle.mode() == FlightMode::kReturnToLaunch; });
+  ASSERT_EQ(vehicle.mode(), FlightMode::kReturnToLaunch);
+  // Half-way home it is long at speed.
+  testing::RunUntilOr(mission, 500.0, [&] { return mission.Truth(1).position_m.y() < 450.0; });
+  const double speed_mps = mission.Truth(1).velocity_mps.norm();
+  const double cruise_mps =
+      static_cast<double>(vehicle.params().Get(agents::ParamId::kCruiseSpeedMps));
+  std::printf("half-way out at %.1f m/s, home at %.1f m/s (mission %.0f, cruise parameter %.0f)\n",
+              out_mps, speed_mps, kMissionSpeedMps, cruise_mps);
+  EXPECT_EQ(vehicle.mode(), FlightMode::kReturnToLaunch);
+  EXPECT_NEAR(speed_mps, out_mps, 0.5);  // as fast as this airframe flies the mission
+  EXPECT_GT(speed_mps, cruise_mps + 1.5);
+}
+
 // A 200 m square at 60 m, flown in `mode`; returns, per corner, the closest the
 // vehicle came to it (truth), and leaves the vehicle landed back home.
 std::vector<double> FlySquare(agents::NavigationMode mode, double* final_distance_home_m) {

@@ -103,6 +103,10 @@ class Vehicle final : public radio::VehicleRequestHandler {
   /// The take-off's target: the active mission's first waypoint altitude (its
   /// layer), or the take-off altitude parameter when it gives none, m.
   double ClimbOutAltitudeM() const;
+  /// The way home's speed: the active mission's, at the waypoint it left it (the
+  /// speed the search was planned and flown at), or 0 (the cruise speed
+  /// parameter) without a mission or a speed in it, m/s.
+  double ReturnSpeedMps() const;
   CascadeSetpoint Behave(Nanos now, std::optional<common::Micros> nav_dt);
   double Param(ParamId id) const { return static_cast<double>(params_.Get(id)); }
   void CheckSafety(Nanos now);
