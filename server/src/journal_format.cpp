@@ -172,6 +172,13 @@ JournalEvent EventFrom(const std::string& kind, const nlohmann::json& data) {
     handed.straight_joins = data.value("straight_joins", 0);
     return handed;
   }
+  if (kind == "sortie_moved") {
+    SortieMoved moved;
+    moved.from = data.at("from").get<std::uint8_t>();
+    const std::vector<DroneMission> taker = MissionsFrom(nlohmann::json::array({data.at("taker")}));
+    moved.taker = taker.front();
+    return moved;
+  }
   if (kind == "state")
     return MissionStateChanged{static_cast<MissionState>(data.at("state").get<int>())};
   if (kind == "report") return ReportFused{ObservationFrom(data)};
@@ -208,7 +215,8 @@ std::string JournalKindOf(const JournalEntry& entry) {
                  [](const TrackRejected&) -> std::string { return "reject"; },
                  [](const InvestigationOpened&) -> std::string { return "investigation"; },
                  [](const InvestigationNotSent&) -> std::string { return "no_investigation"; },
-                 [](const DroneRecalled&) -> std::string { return "recall"; }},
+                 [](const DroneRecalled&) -> std::string { return "recall"; },
+                 [](const SortieMoved&) -> std::string { return "sortie_moved"; }},
       entry.event);
 }
 
@@ -264,6 +272,9 @@ nlohmann::json JournalDataOf(const JournalEntry& entry) {
           },
           [](const DroneRecalled& e) -> nlohmann::json {
             return {{"vehicle", e.vehicle}, {"why", e.why}};
+          },
+          [](const SortieMoved& e) -> nlohmann::json {
+            return {{"from", e.from}, {"taker", MissionsJson({e.taker}).front()}};
           }},
       entry.event);
   if (entry.radio_seq) data[kRadioSequenceKey] = *entry.radio_seq;

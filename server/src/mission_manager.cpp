@@ -120,6 +120,46 @@ std::vector<radio::Waypoint> MissionManager::Remaining(
   return {route.begin() + static_cast<std::ptrdiff_t>(first), route.end()};
 }
 
+std::size_t MissionManager::UnstartedSorties(std::uint8_t vehicle) const {
+  const Drone& drone = Find(vehicle);
+  const std::size_t count = SortieCount(drone.mission);
+  switch (drone.progress.phase) {
+    case DronePhase::kDone:
+    case DronePhase::kFailed:
+      return 0;
+    case DronePhase::kSwapping:
+      return count - std::min(count, drone.next_sortie);
+    case DronePhase::kUploading:
+    case DronePhase::kStarting:
+    case DronePhase::kFlying:
+      break;
+  }
+  return count - std::min(count, drone.progress.sortie + 1);
+}
+
+std::optional<std::vector<radio::Waypoint>> MissionManager::TakeLastSortie(std::uint8_t vehicle) {
+  // A mission's only sortie stays (a mission handed to a drone on the ground
+  // waits for its pack at its first).
+  if (UnstartedSorties(vehicle) == 0 || SortieCount(Find(vehicle).mission) < 2) {
+    return std::nullopt;
+  }
+  Drone& drone = Find(vehicle);
+  DroneMission& mission = drone.mission;
+  const std::size_t last = SortieCount(mission) - 1;
+  const std::size_t first = SortieRange(mission, last).first;
+  std::vector<radio::Waypoint> taken(mission.waypoints.begin() + static_cast<std::ptrdiff_t>(first),
+                                     mission.waypoints.end());
+  mission.waypoints.resize(first);
+  mission.sortie_starts.pop_back();
+  drone.progress.sortie_count = SortieCount(mission);
+  drone.progress.waypoint_count = mission.waypoints.size();
+  if (drone.progress.phase == DronePhase::kSwapping && drone.next_sortie >= last) {
+    drone.progress.phase = DronePhase::kDone;
+  }
+  ++missions_version_;
+  return taken;
+}
+
 std::uint16_t MissionManager::LastMissionId() const {
   std::uint16_t last = 0;
   for (const auto& [vehicle, drone] : drones_) {
@@ -245,10 +285,26 @@ void MissionManager::OnTelemetry(const radio::TelemetryReceived& received) {
   }
   if (telemetry.mission_id != SortieMissionId(drone.mission, progress.sortie)) return;
   if (progress.phase != DronePhase::kFlying) return;
-  const auto [first, end] = SortieRange(drone.mission, progress.sortie);
-  progress.waypoint_index = std::max(progress.waypoint_index,
-                                     std::min<std::size_t>(first + telemetry.waypoint_index, end));
+  const std::size_t first = SortieRange(drone.mission, progress.sortie).first;
+  // Sent home by a low battery: its rest is a sortie of its own from now on, so
+  // that a drone standing ready may take it while this one flies home.
+  if (telemetry.mode != radio::FlightMode::kSearch && CutShort(drone.mission.vehicle, telemetry)) {
+    CutSortie(drone, first + telemetry.waypoint_index);
+  }
+  progress.waypoint_index =
+      std::max(progress.waypoint_index,
+               std::min<std::size_t>(first + telemetry.waypoint_index,
+                                     SortieRange(drone.mission, progress.sortie).second));
   if (telemetry.mode == radio::FlightMode::kLanded) OnLanded(drone, telemetry);
+}
+
+void MissionManager::CutSortie(Drone& drone, std::size_t flying_to) {
+  // The rest begins with the leg it was on.
+  const auto at =
+      drone.mission.sortie_starts.begin() + static_cast<std::ptrdiff_t>(drone.progress.sortie);
+  drone.mission.sortie_starts.insert(at, flying_to - 1);
+  ++drone.progress.sortie_count;
+  ++missions_version_;
 }
 
 bool MissionManager::CutShort(std::uint8_t vehicle, const radio::Telemetry& telemetry) const {
@@ -270,14 +326,9 @@ void MissionManager::OnLanded(Drone& drone, const radio::Telemetry& telemetry) {
   DroneProgress& progress = drone.progress;
   DroneMission& mission = drone.mission;
   const std::size_t first = SortieRange(mission, progress.sortie).first;
-  // Cut short: the rest, from the leg it was on, becomes a sortie of its own.
-  const std::size_t flying_to = first + telemetry.waypoint_index;
-  if (CutShort(mission.vehicle, telemetry)) {
-    const auto at = mission.sortie_starts.begin() + static_cast<std::ptrdiff_t>(progress.sortie);
-    mission.sortie_starts.insert(at, flying_to - 1);
-    ++progress.sortie_count;
-    ++missions_version_;
-  }
+  // Cut short (and not seen on its way home): the rest, from the leg it was on,
+  // becomes a sortie of its own.
+  if (CutShort(mission.vehicle, telemetry)) CutSortie(drone, first + telemetry.waypoint_index);
   ++progress.sorties_flown;
   drone.next_sortie = progress.sortie + 1;
   const bool last = progress.sortie + 1 >= SortieCount(mission);

@@ -152,6 +152,7 @@ std::vector<radio::Burst> Server::Step(common::Nanos now, std::span<const std::u
   CheckInvestigations(now);
   HandOverLostDrones(now_s);
   RecallHandedOverDrones(now_s);
+  RebalanceSorties(now_s);
   UpdateState(now_s);
   return bursts;
 }
@@ -169,6 +170,11 @@ void Server::OnEvent(const radio::SchedulerEvent& event, double now_s) {
         LocalM(frame_, {telemetry->telemetry.lat_deg, telemetry->telemetry.lon_deg});
     investigations_.OnPosition(telemetry->vehicle, where, now_s);
     MarkCoverage(telemetry->telemetry, where);
+    const radio::FlightMode mode = telemetry->telemetry.mode;
+    if ((mode == radio::FlightMode::kIdle || mode == radio::FlightMode::kLanded) &&
+        (telemetry->telemetry.flags & radio::telemetry_flags::kGpsFix) != 0) {
+      stand_en_m_[telemetry->vehicle] = where;
+    }
     clock_offset_s_[telemetry->vehicle] =
         now_s - static_cast<double>(telemetry->telemetry.time_ms) / common::kMillisPerSecond;
   } else if (const auto* report = std::get_if<radio::FireReportReceived>(&event)) {
@@ -186,12 +192,12 @@ void Server::OnEvent(const radio::SchedulerEvent& event, double now_s) {
   mission_->OnEvent(event);
   UpdateStartCommand(event);
   for (const std::uint8_t id : mission_->vehicles()) {
-    const DronePhase phase = mission_->progress(id).phase;
+    // A new phase, or sorties cut in two (a low-battery return) in the same one.
+    JournaledPhase now{mission_->progress(id).phase, mission_->mission_of(id).sortie_starts};
     const auto journaled = journaled_phases_.find(id);
-    if (journaled != journaled_phases_.end() && journaled->second == phase) continue;
-    journaled_phases_[id] = phase;
-    Record(now_s, PhaseChanged{id, phase, mission_->progress(id).sortie,
-                               mission_->mission_of(id).sortie_starts});
+    if (journaled != journaled_phases_.end() && journaled->second == now) continue;
+    Record(now_s, PhaseChanged{id, now.phase, mission_->progress(id).sortie, now.sortie_starts});
+    journaled_phases_[id] = std::move(now);
   }
 }
 

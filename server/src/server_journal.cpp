@@ -91,7 +91,7 @@ void Server::Replay(const JournalEntry& entry) {
           [&](const PhaseChanged& e) {
             need_mission("phase");
             mission_->RestorePhase(e.vehicle, e.phase, e.sortie, e.sortie_starts);
-            journaled_phases_[e.vehicle] = e.phase;
+            journaled_phases_[e.vehicle] = {e.phase, mission_->mission_of(e.vehicle).sortie_starts};
           },
           [&](const LanesHandedOver& e) {
             need_mission("handover");
@@ -109,7 +109,15 @@ void Server::Replay(const JournalEntry& entry) {
           [&](const InvestigationOpened& e) { investigations_.Restore(InvestigationFrom(e, t_s)); },
           // Why a new track got no investigator: for the operator, nothing to rebuild.
           [](const InvestigationNotSent&) {},
-          [&](const DroneRecalled& e) { handed_over_[e.vehicle] = true; }},
+          [&](const DroneRecalled& e) { handed_over_[e.vehicle] = true; },
+          [&](const SortieMoved& e) {
+            need_mission("sortie move");
+            if (!mission_->TakeLastSortie(e.from)) {
+              throw std::runtime_error("vehicle " + std::to_string(e.from) +
+                                       " has no sortie left to give");
+            }
+            mission_->Replace(e.taker, /*send=*/false);
+          }},
       entry.event);
 }
 

@@ -101,6 +101,19 @@ TEST(JournalFormat, SortiesComeBackWithTheMissionAndEachPhase) {
   EXPECT_EQ(changed.sortie_starts, (std::vector<std::size_t>{3, 7, 9}));
 }
 
+TEST(JournalFormat, ASortieMovedComesBackWithItsDonorAndTheTakersMission) {
+  DroneMission taker = MissionOf(2, 3);
+  taker.mission_id = 17;
+  const JournalEntry entry{120.0, 5, SortieMoved{4, taker}};
+  EXPECT_EQ(JournalKindOf(entry), "sortie_moved");
+  const JournalEntry back = RoundTrip(entry);
+  const auto& moved = std::get<SortieMoved>(back.event);
+  EXPECT_EQ(moved.from, 4);
+  EXPECT_EQ(moved.taker.vehicle, 2);
+  EXPECT_EQ(moved.taker.mission_id, 17);
+  EXPECT_EQ(moved.taker.waypoints, taker.waypoints);
+}
+
 TEST(JournalFormat, KeepsTheRecordNamesAndFieldsOfTheFormatBeforeTypes) {
   EXPECT_EQ(JournalKindOf({0.0, 1, CommandAccepted{OperatorCommand::Kind::kStart, 0, {}, "go"}}),
             "start");

@@ -250,6 +250,65 @@ TEST(MissionManager, ASortieCutShortByALowBatteryIsResumedFromTheLegItWasOn) {
       std::vector<radio::Waypoint>(mission.waypoints.begin() + 2, mission.waypoints.begin() + 6));
 }
 
+TEST(MissionManager, ASortieCutShortIsASortieOfItsOwnAsSoonAsTheReturnIsSeen) {
+  Air air(0.0, radio::LinkMode::kSlots);
+  air.Add(1);
+  DroneMission mission = Mission(1, 10);
+  mission.sortie_starts = {6};
+  ManagedScheduler server = Manage(air.mode, {1}, {mission});
+  const MissionManager& manager = *server.manager;
+  air.Run(server, kLimit, [&] { return manager.AllStarted(); });
+  // On its way home on a low battery, still in the air: its rest can go to
+  // another drone already (the last sortie is the old second, unstarted).
+  Report(air.vehicle(1), 42, 3, radio::FlightMode::kReturnToLaunch, 24, /*low_battery=*/true);
+  air.Run(server, air.channel().now() + kLimit,
+          [&] { return manager.progress(1).sortie_count == 3; });
+  EXPECT_EQ(manager.progress(1).phase, DronePhase::kFlying);
+  EXPECT_EQ(manager.mission_of(1).sortie_starts, (std::vector<std::size_t>{2, 6}));
+  EXPECT_EQ(manager.UnstartedSorties(1), 2U);
+  // Landing does not cut it again.
+  Report(air.vehicle(1), 42, 3, radio::FlightMode::kLanded, 22, /*low_battery=*/true);
+  air.Run(server, air.channel().now() + kLimit,
+          [&] { return manager.progress(1).phase == DronePhase::kSwapping; });
+  EXPECT_EQ(manager.mission_of(1).sortie_starts, (std::vector<std::size_t>{2, 6}));
+}
+
+TEST(MissionManager, GivesAwayOnlyALastSortieThatHasNotStarted) {
+  Air air(0.0, radio::LinkMode::kSlots);
+  air.Add(1);
+  air.Add(2);
+  const DroneMission three = ThreeSorties(1);
+  ManagedScheduler server = Manage(air.mode, {1, 2}, {three, Mission(2, 4)});
+  MissionManager& manager = *server.manager;
+  air.Run(server, kLimit, [&] { return manager.AllStarted(); });
+  // Flying its first of three: the third goes, whole, and nothing is sent.
+  EXPECT_EQ(manager.UnstartedSorties(1), 2U);
+  const std::uint64_t sent = server.scheduler->stats().requests_sent;
+  const std::optional<std::vector<radio::Waypoint>> third = manager.TakeLastSortie(1);
+  ASSERT_TRUE(third);
+  EXPECT_EQ(*third,
+            std::vector<radio::Waypoint>(three.waypoints.begin() + 8, three.waypoints.end()));
+  EXPECT_EQ(server.scheduler->stats().requests_sent, sent);
+  EXPECT_EQ(manager.progress(1).sortie_count, 2U);
+  EXPECT_EQ(manager.progress(1).waypoint_count, 8U);
+  EXPECT_EQ(manager.UnstartedSorties(1), 1U);
+  // A mission's only sortie stays, flying or not.
+  EXPECT_EQ(manager.UnstartedSorties(2), 0U);
+  EXPECT_FALSE(manager.TakeLastSortie(2));
+  // Landed for its pack with one sortie to come: taking it leaves the drone done.
+  Report(air.vehicle(1), 42, 3, radio::FlightMode::kLanded, 30);
+  air.Run(server, air.channel().now() + kLimit,
+          [&] { return manager.progress(1).phase == DronePhase::kSwapping; });
+  EXPECT_EQ(manager.UnstartedSorties(1), 1U);
+  ASSERT_TRUE(manager.TakeLastSortie(1));
+  EXPECT_EQ(manager.progress(1).phase, DronePhase::kDone);
+  EXPECT_EQ(manager.UnstartedSorties(1), 0U);
+  EXPECT_FALSE(manager.TakeLastSortie(1));
+  Report(air.vehicle(1), 42, 3, radio::FlightMode::kLanded, 100);
+  air.Run(server, air.channel().now() + std::chrono::seconds(30), [] { return false; });
+  EXPECT_EQ(air.vehicle(1).starts_accepted(), 1) << "a fresh pack starts nothing";
+}
+
 TEST(MissionManager, AMissionHandedToADroneBetweenSortiesWaitsForItsPack) {
   Air air(0.0, radio::LinkMode::kSlots);
   air.Add(1);

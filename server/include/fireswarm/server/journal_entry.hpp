@@ -64,6 +64,13 @@ struct LanesHandedOver {
   int straight_joins = 0;
 };
 
+/// A drone done with its sorties took another's last one, not yet started
+/// (Server::RebalanceSorties).
+struct SortieMoved {
+  std::uint8_t from = 0;
+  DroneMission taker;  ///< the taker's new mission: that sortie, at its own altitudes
+};
+
 /// The mission's state changed by itself (all started, all over).
 struct MissionStateChanged {
   MissionState state = MissionState::kIdle;
@@ -100,9 +107,10 @@ struct DroneRecalled {
   std::string why;
 };
 
-using JournalEvent = std::variant<VehicleAdded, MissionLoaded, CommandAccepted, PhaseChanged,
-                                  LanesHandedOver, MissionStateChanged, ReportFused, TrackRejected,
-                                  InvestigationOpened, InvestigationNotSent, DroneRecalled>;
+using JournalEvent =
+    std::variant<VehicleAdded, MissionLoaded, CommandAccepted, PhaseChanged, LanesHandedOver,
+                 MissionStateChanged, ReportFused, TrackRejected, InvestigationOpened,
+                 InvestigationNotSent, DroneRecalled, SortieMoved>;
 
 /// One thing that must survive a restart, in the order it happened.
 struct JournalEntry {

@@ -14,7 +14,8 @@
 // change power-cycles the vehicle, and the server never launches a drone on a
 // battery it has not seen full; a crew that is slow only delays that drone. A
 // sortie cut short by a low-battery return is resumed after the swap: its rest,
-// from the leg it was on, becomes a sortie of its own.
+// from the leg it was on, becomes a sortie of its own as soon as telemetry shows
+// the return (so a drone standing ready may take it: Server::RebalanceSorties).
 //
 // A pure core: it queues requests on the scheduler it is given and reacts to the
 // scheduler's events. No clock: times come with the events and with Step().
@@ -181,6 +182,17 @@ class MissionManager {
   /// that its rest goes up as a sortie of its own after the swap (it is not done).
   /// Throws std::out_of_range for a vehicle without a mission.
   bool CutShort(std::uint8_t vehicle, const radio::Telemetry& telemetry) const;
+  /// How many of a drone's sorties are still to start: those after the one it
+  /// uploads, starts or flies, or from the next one when on the ground between
+  /// sorties. 0 for a drone done or failed. Throws std::out_of_range for a
+  /// vehicle without a mission.
+  std::size_t UnstartedSorties(std::uint8_t vehicle) const;
+  /// Takes a drone's last sortie away when it has not started (another drone flies
+  /// it: Server::RebalanceSorties) and returns its waypoints; nothing sent, the
+  /// sortie never went up. A drone on the ground whose next sortie it was is done.
+  /// nullopt, and nothing changed, when it has none unstarted. Throws
+  /// std::out_of_range for a vehicle without a mission.
+  std::optional<std::vector<radio::Waypoint>> TakeLastSortie(std::uint8_t vehicle);
   /// The highest radio mission ID any drone's sorties use.
   std::uint16_t LastMissionId() const;
   /// The mission a drone flies now. Throws std::out_of_range as progress().
@@ -218,6 +230,9 @@ class MissionManager {
   // Makes `sortie` the drone's current one: its chunks, nothing sent.
   static void LoadSortie(Drone& drone, std::size_t sortie);
   void OnLanded(Drone& drone, const radio::Telemetry& telemetry);
+  // Makes the rest of the drone's sortie, from the leg before waypoint
+  // `flying_to` (an index into its route), a sortie of its own.
+  void CutSortie(Drone& drone, std::size_t flying_to);
   void StartNextSortie(Drone& drone);
   // The drone of `vehicle`; throws std::out_of_range naming it when it has no mission.
   const Drone& Find(std::uint8_t vehicle) const;

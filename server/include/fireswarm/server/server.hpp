@@ -85,6 +85,14 @@ struct ServerConfig {
   /// A flying drone the registry marks lost is given up, and the lanes it had
   /// still to fly go to the drones still searching as new missions (handover.hpp).
   bool hand_over_lost_lanes = true;
+  /// A drone done with its sorties, on the ground with a fresh pack, takes the last
+  /// sortie not yet started of the drone with the most still to start, at the
+  /// same site (server_rebalance.cpp): investigations and sorties cut short by a
+  /// low battery leave some drones behind, and the fleet should finish together.
+  bool rebalance_sorties = true;
+  /// Two drones whose stands (where they were last seen on the ground) are at most
+  /// this far apart share a launch site, m.
+  double same_site_m = 200.0;
   /// A tentative track is rejected this long after its investigation ended when
   /// the investigator did not report it again, s (reports still in the air).
   double reject_grace_s = 10.0;
@@ -202,6 +210,9 @@ class Server {
   void HandOverLostDrones(double now_s);
   void HandOver(std::uint8_t lost, double now_s);
   void RecallHandedOverDrones(double now_s);
+  void RebalanceSorties(double now_s);
+  bool ReadyForASortie(std::uint8_t vehicle, double now_s) const;
+  std::optional<std::uint8_t> SortieDonorFor(std::uint8_t taker) const;
   std::vector<Taker> TakersFor(std::uint8_t lost, double now_s) const;
   void CheckInvestigations(common::Nanos now);
   void UpdateState(double now_s);
@@ -224,7 +235,15 @@ class Server {
   std::map<std::uint8_t, bool> handed_over_;
   std::map<std::pair<std::uint8_t, std::uint16_t>, double> report_receipts_;
   std::map<std::uint8_t, double> clock_offset_s_;  // mission time - vehicle clock, per vehicle
-  std::map<std::uint8_t, DronePhase> journaled_phases_;
+  struct JournaledPhase {
+    DronePhase phase = DronePhase::kUploading;
+    std::vector<std::size_t> sortie_starts;
+    bool operator==(const JournaledPhase&) const = default;
+  };
+  std::map<std::uint8_t, JournaledPhase> journaled_phases_;
+  // Where each drone was last seen on the ground with a fix, local metres: its
+  // stand, which tells its launch site (RebalanceSorties).
+  std::map<std::uint8_t, Eigen::Vector2d> stand_en_m_;
   CommandLog commands_;
   std::int32_t start_command_id_ = 0;  // the start's record, 0: none this life
   std::vector<JournalEntry> journal_;
