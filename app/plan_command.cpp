@@ -40,6 +40,8 @@ struct Flags {
   std::vector<std::string> launch;
   std::string launch_file;
   double swap_s = 300.0;
+  double climb_mps = 3.0;
+  double descent_mps = 1.0;
   double altitude_m = 60.0;
   double speed_mps = 10.0;
   double endurance_s = 1'800.0;
@@ -143,6 +145,8 @@ void CheckFlags(const Flags& f) {
   if (!(f.speed_mps > 0)) BadFlag("speed-mps", "must be > 0, got " + Text(f.speed_mps));
   if (!(f.endurance_s > 0)) BadFlag("endurance-s", "must be > 0, got " + Text(f.endurance_s));
   if (!(f.swap_s >= 0)) BadFlag("swap-s", "must be >= 0, got " + Text(f.swap_s));
+  if (!(f.climb_mps > 0)) BadFlag("climb-mps", "must be > 0, got " + Text(f.climb_mps));
+  if (!(f.descent_mps > 0)) BadFlag("descent-mps", "must be > 0, got " + Text(f.descent_mps));
   if (!f.launch.empty() && !f.launch_file.empty()) {
     BadFlag("launch-file", "and --launch both give launch sites: use one of them");
   }
@@ -173,6 +177,8 @@ FleetSpec ToFleet(const Flags& f, const SearchArea& area) {
   fleet.receiver_ids = ReceiverIds(f);
   SetLaunchSites(f, area, fleet);
   fleet.swap_s = f.swap_s;
+  fleet.climb_mps = f.climb_mps;
+  fleet.descent_mps = f.descent_mps;
   fleet.altitude_m = f.altitude_m;
   fleet.speed_mps = f.speed_mps;
   fleet.endurance_s = f.endurance_s;
@@ -190,6 +196,8 @@ std::string InFlagTerms(const std::string& message) {
       {"launch_points", "launch"},
       {"site_drones", "launch-file"},
       {"swap_s", "swap-s"},
+      {"climb_mps", "climb-mps"},
+      {"descent_mps", "descent-mps"},
       {"altitude_m", "altitude-m"},
       {"speed_mps", "speed-mps"},
       {"endurance_s", "endurance-s"},
@@ -218,6 +226,7 @@ nlohmann::ordered_json ToJson(const Flags& f, const Plan& plan,
                       {"turn_s", d.turn_s},
                       {"transit_s", d.transit_s},
                       {"ground_s", d.ground_s},
+                      {"vertical_s", d.vertical_s},
                       {"longest_sortie_s", d.longest_sortie_s}});
   }
   nlohmann::ordered_json files = nlohmann::ordered_json::array();
@@ -280,7 +289,11 @@ int RunPlan(const std::vector<std::string>& args) {
   add("launch-file", po::value(&f.launch_file)->value_name("FILE"),
       "launch sites as GeoJSON Points, each with an optional integer property \"drones\"");
   add("swap-s", po::value(&f.swap_s)->default_value(f.swap_s),
-      "time on the ground between two sorties (landing, battery swap, take-off)");
+      "time on the ground between two sorties (battery swap, checks)");
+  add("climb-mps", po::value(&f.climb_mps)->default_value(f.climb_mps),
+      "take-off climb rate: every sortie climbs to --altitude-m over its site");
+  add("descent-mps", po::value(&f.descent_mps)->default_value(f.descent_mps),
+      "landing descent rate: every sortie descends from its altitude to land");
   add("altitude-m", po::value(&f.altitude_m)->default_value(f.altitude_m),
       "flight altitude above ground");
   add("speed-mps", po::value(&f.speed_mps)->default_value(f.speed_mps), "cruise speed");

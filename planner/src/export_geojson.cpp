@@ -42,6 +42,7 @@ Json PathFeature(const DronePlan& drone) {
             {"time_s", drone.time_s},
             {"sorties", drone.sorties},
             {"ground_s", drone.ground_s},
+            {"vertical_s", drone.vertical_s},
             {"longest_sortie_s", drone.longest_sortie_s},
             {"waypoints", drone.waypoints.size()}}},
           {"geometry", {{"type", "LineString"}, {"coordinates", std::move(coordinates)}}}};
@@ -97,6 +98,8 @@ std::string PlanToGeoJson(const Plan& plan, const SearchArea& area, const FleetS
                   {"lower_bound_basis", plan.lower_bound_basis},
                   {"endurance_s", fleet.endurance_s},
                   {"swap_s", fleet.swap_s},
+                  {"climb_mps", fleet.climb_mps},
+                  {"descent_mps", fleet.descent_mps},
                   {"nofly_violation_m", plan.nofly_violation_m},
                   {"sweep_width_m", plan.sweep_width_m},
                   {"altitude_m", fleet.altitude_m},

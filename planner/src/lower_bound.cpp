@@ -83,10 +83,10 @@ LowerBound MakespanLowerBound(const MultiPolygon& region, const std::vector<Poin
   LowerBound bound;
   {
     const double sorties = std::ceil(work_s / (n * in.endurance_s) - 1e-9);
-    bound.seconds = work_s / n + std::max(0.0, sorties - 1.0) * in.swap_s;
+    bound.seconds = work_s / n + sorties * in.vertical_s + std::max(0.0, sorties - 1.0) * in.swap_s;
     bound.basis = "busiest drone: the area's sweep " + Minutes(work_s) + " / " +
                   std::to_string(in.drones) + " drones in " + std::to_string(std::lround(sorties)) +
-                  " sortie(s), swaps between them";
+                  " sortie(s), each with its climb and descent, swaps between them";
   }
   std::vector<double> distances;
   ForEachCell(region, CellM(region), [&](Point p) { distances.push_back(NearestM(p, sites)); });
@@ -102,7 +102,7 @@ LowerBound MakespanLowerBound(const MultiPolygon& region, const std::vector<Poin
     if (room_s <= 0.0) continue;  // out of reach: the caller refuses such areas
     const double sorties = std::ceil(far_s / (n * room_s) - 1e-9);
     const double busiest_s =
-        far_s / n + sorties * trip_s + std::max(0.0, sorties - 1.0) * in.swap_s;
+        far_s / n + sorties * (trip_s + in.vertical_s) + std::max(0.0, sorties - 1.0) * in.swap_s;
     if (busiest_s > bound.seconds) {
       bound.seconds = busiest_s;
       bound.basis = "busiest far drone: beyond " + Km(distances[k]) + " of the nearest site lies " +
@@ -141,13 +141,14 @@ LowerBound MakespanLowerBound(const MultiPolygon& region, const std::vector<Poin
   }
   const double sorties = std::max(most_sorties, std::ceil(flight_s / in.endurance_s - 1e-9));
   const double swaps = std::max(0.0, sorties - n);
-  const double fleet_s = (flight_s + swaps * in.swap_s) / n;
+  const double fleet_s = (flight_s + sorties * in.vertical_s + swaps * in.swap_s) / n;
   if (fleet_s > bound.seconds) {
     bound.seconds = fleet_s;
     bound.basis = "fleet: " + Minutes(flight_s) + " of flight (the sweep beyond " + Km(at_m) +
                   " of the nearest site, " + Minutes(far_s(at_m)) +
                   ", plus the sorties' way out to there and back, counted layer by layer) in >= " +
-                  std::to_string(std::lround(sorties)) + " sorties, " +
+                  std::to_string(std::lround(sorties)) +
+                  " sorties (each with its climb and descent), " +
                   std::to_string(std::lround(swaps)) + " swaps, over " + std::to_string(in.drones) +
                   " drones";
   }

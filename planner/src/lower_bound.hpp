@@ -14,8 +14,9 @@ struct BoundInputs {
   double sweep_width_m = 1.0;      ///< area seen per metre flown
   double footprint_width_m = 1.0;  ///< a drone sees this far across its track
   double speed_mps = 1.0;
-  double endurance_s = 0.0;  ///< flight per sortie
+  double endurance_s = 0.0;  ///< level flight per sortie (the climb and descent excluded)
   double swap_s = 0.0;       ///< on the ground between sorties
+  double vertical_s = 0.0;   ///< every sortie's climb to altitude and descent to land
 };
 
 struct LowerBound {

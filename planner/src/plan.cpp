@@ -42,6 +42,16 @@ bool PositiveFinite(double value) {
   return value > 0.0 && std::isfinite(value);
 }
 
+// Every sortie's climb over its site to altitude_m and its descent to land, s.
+double VerticalS(const FleetSpec& fleet) {
+  return fleet.altitude_m / fleet.climb_mps + fleet.altitude_m / fleet.descent_mps;
+}
+
+// What a sortie's endurance leaves at altitude, s.
+double LevelFlightS(const FleetSpec& fleet) {
+  return fleet.endurance_s - VerticalS(fleet);
+}
+
 void ValidateFleet(const SearchArea& area, const FleetSpec& fleet) {
   Require(!fleet.receiver_ids.empty(), "receiver_ids: the fleet has no drones");
   std::set<int> seen;
@@ -78,9 +88,17 @@ void ValidateFleet(const SearchArea& area, const FleetSpec& fleet) {
           "endurance_s must be > 0, got " + std::to_string(fleet.endurance_s));
   Require(fleet.swap_s >= 0.0 && std::isfinite(fleet.swap_s),
           "swap_s must be >= 0, got " + std::to_string(fleet.swap_s));
+  Require(PositiveFinite(fleet.climb_mps),
+          "climb_mps must be > 0, got " + std::to_string(fleet.climb_mps));
+  Require(PositiveFinite(fleet.descent_mps),
+          "descent_mps must be > 0, got " + std::to_string(fleet.descent_mps));
   Require(fleet.turn_cost_s >= 0.0 && std::isfinite(fleet.turn_cost_s),
           "turn_cost_s must be >= 0, got " + std::to_string(fleet.turn_cost_s));
   SweepWidthM(fleet);  // throws naming camera, altitude_m, camera_pitch_deg or side_overlap
+  Require(VerticalS(fleet) < fleet.endurance_s,
+          "endurance_s " + std::to_string(std::lround(fleet.endurance_s)) +
+              " s leaves no time at altitude: the climb to altitude_m and the descent take " +
+              std::to_string(std::lround(VerticalS(fleet))) + " s");
 }
 
 MultiPolygon SearchRegion(const SearchArea& area) {
@@ -225,15 +243,16 @@ void CheckReach(const SearchArea& area, const MultiPolygon& region, const FleetS
   const FarthestPoint far = FarthestFromSites(region, fleet.launch_points);
   const double round_trip_s =
       2.0 * std::max(0.0, far.distance_m - footprint_m / 2.0) / fleet.speed_mps;
-  if (round_trip_s < fleet.endurance_s) return;
+  if (round_trip_s < LevelFlightS(fleet)) return;
   throw std::runtime_error(
       "endurance_s " + std::to_string(std::lround(fleet.endurance_s)) +
       " s is too short: the area at " + Where(area, far.point) + " (lat, lon) lies " +
       std::to_string(std::lround(far.distance_m)) +
       " m from the nearest launch site; seeing it and flying back takes more than " +
       std::to_string(std::lround(round_trip_s)) + " s (a range of " +
-      std::to_string(std::lround(2.0 * far.distance_m)) +
-      " m out and back): add a launch site nearer to it or a longer endurance");
+      std::to_string(std::lround(2.0 * far.distance_m)) + " m out and back, after " +
+      std::to_string(std::lround(VerticalS(fleet))) +
+      " s of climb and descent): add a launch site nearer to it or a longer endurance");
 }
 
 MultiPolygon UnitRegion(const SortieUnit& unit, const LaneField& field) {
@@ -280,7 +299,10 @@ Plan PlanSearch(const SearchArea& area, const FleetSpec& fleet, PlannerKind kind
   const TransitPlanner transit(area.no_fly, TransitBounds(area, sites), seed);
   const TransitDistance distance(transit);
   const TransitFn distance_fn = [&distance](Point a, Point b) { return distance(a, b); };
-  const SortieSpec spec{fleet.speed_mps, fleet.turn_cost_s, fleet.endurance_s};
+  // Sorties are cut to the level flight their endurance leaves after the climb and
+  // the descent; each costs those on top, like the swap between two.
+  const double vertical_s = VerticalS(fleet);
+  const SortieSpec spec{fleet.speed_mps, fleet.turn_cost_s, LevelFlightS(fleet)};
 
   // Lane fields, one per sweep direction over the whole region (a family of
   // fields, so that regions of their own, e.g. per site, can join later), each
@@ -297,7 +319,7 @@ Plan PlanSearch(const SearchArea& area, const FleetSpec& fleet, PlannerKind kind
     const double lane_s = std::accumulate(field_s.begin(), field_s.end(), 0.0);
     if (lane_s <= 0.0) continue;
     const double per_drone_s = lane_s / static_cast<double>(drones);
-    const int least = std::max(1, static_cast<int>(std::ceil(per_drone_s / fleet.endurance_s)));
+    const int least = std::max(1, static_cast<int>(std::ceil(per_drone_s / spec.endurance_s)));
     for (int sorties = least; sorties <= least + kExtraSortieCounts; ++sorties) {
       const double target_s = per_drone_s / sorties;
       const double wanted = static_cast<double>(drones) * sorties;
@@ -326,8 +348,8 @@ Plan PlanSearch(const SearchArea& area, const FleetSpec& fleet, PlannerKind kind
               unit_site_s[u].push_back(SortieTimeS(units[u], site, spec, distance_fn));
             }
           }
-          std::optional<Assignment> assignment =
-              AssignUnits(unit_site_s, drones, fleet.site_drones, fleet.endurance_s, fleet.swap_s);
+          std::optional<Assignment> assignment = AssignUnits(
+              unit_site_s, drones, fleet.site_drones, spec.endurance_s, fleet.swap_s + vertical_s);
           if (!assignment) continue;
           if (!best || assignment->makespan_s < best->assignment.makespan_s) {
             best = Candidate{fields, std::move(units), std::move(*assignment)};
@@ -394,9 +416,10 @@ Plan PlanSearch(const SearchArea& area, const FleetSpec& fleet, PlannerKind kind
     drone.sweep_s = flight.sweep_s;
     drone.turn_s = flight.turn_s;
     drone.transit_s = flight.transit_s;
-    drone.longest_sortie_s = flight.longest_sortie_s;
+    drone.vertical_s = drone.sorties * vertical_s;
+    drone.longest_sortie_s = flight.longest_sortie_s + vertical_s;
     drone.ground_s = flight.sorties > 1 ? (flight.sorties - 1) * fleet.swap_s : 0.0;
-    drone.time_s = flight.time_s + drone.ground_s;
+    drone.time_s = flight.time_s + drone.vertical_s + drone.ground_s;
     plan.makespan_s = std::max(plan.makespan_s, drone.time_s);
     plan.nofly_violation_m += InteriorLengthM(path, area.no_fly);
     paths.push_back(std::move(path));
@@ -406,7 +429,7 @@ Plan PlanSearch(const SearchArea& area, const FleetSpec& fleet, PlannerKind kind
       CoverageFraction(region, paths, footprint_m / 2.0, CoverageCellM(AreaM2(region), sweep_m));
   const LowerBound bound = MakespanLowerBound(
       region, sites,
-      {drones, sweep_m, footprint_m, fleet.speed_mps, fleet.endurance_s, fleet.swap_s});
+      {drones, sweep_m, footprint_m, fleet.speed_mps, spec.endurance_s, fleet.swap_s, vertical_s});
   plan.lower_bound_s = bound.seconds;
   plan.lower_bound_basis = bound.basis;
   plan.planning_seconds =

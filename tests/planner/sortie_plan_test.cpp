@@ -78,7 +78,10 @@ TEST(LargeAreaPlan, AnAreaNeedingThreeSortiesPerDroneCountsTheSwaps) {
     EXPECT_GE(drone.sorties, 3) << "drone " << drone.receiver_id;
     EXPECT_EQ(Landings(drone), drone.sorties);
     EXPECT_DOUBLE_EQ(drone.ground_s, (drone.sorties - 1) * fleet.swap_s);
-    EXPECT_NEAR(drone.time_s, drone.sweep_s + drone.turn_s + drone.transit_s + drone.ground_s,
+    // Each sortie climbs to 60 m at 3 m/s and descends at 1 m/s.
+    EXPECT_DOUBLE_EQ(drone.vertical_s, drone.sorties * (20.0 + 60.0));
+    EXPECT_NEAR(drone.time_s,
+                drone.sweep_s + drone.turn_s + drone.transit_s + drone.vertical_s + drone.ground_s,
                 1e-6 * drone.time_s);
     EXPECT_LE(drone.longest_sortie_s, fleet.endurance_s);
   }
@@ -160,13 +163,16 @@ TEST(LowerBound, NeverAboveABruteForceOptimumOnAOneLaneStrip) {
       fleet.turn_cost_s = 0.0;
       const double half_m = SweepWidthM(fleet) / 2.0 * 0.9;
       const SearchArea area = Area({Rect(0, -half_m, length_m, half_m)});
-      // Optimum: sorties reaching x_1 < x_2 < ... < x_k = length, each 2 x_i / v.
+      // Optimum: sorties reaching x_1 < x_2 < ... < x_k = length, each 2 x_i / v
+      // and its climb and descent.
+      const double vertical_s =
+          fleet.altitude_m / fleet.climb_mps + fleet.altitude_m / fleet.descent_mps;
       const double step_m = 10.0;
       const auto steps = static_cast<int>(length_m / step_m);
       std::vector<double> best(static_cast<std::size_t>(steps) + 1, 1e300);
       best[0] = -fleet.swap_s;  // no swap before the first sortie
       for (int i = 1; i <= steps; ++i) {
-        const double sortie_s = 2.0 * i * step_m / fleet.speed_mps;
+        const double sortie_s = 2.0 * i * step_m / fleet.speed_mps + vertical_s;
         if (sortie_s > endurance_s) break;
         for (int j = 0; j < i; ++j) {
           // The sortie that reaches i sweeps (j, i]: out and back through the swept part.
@@ -178,7 +184,7 @@ TEST(LowerBound, NeverAboveABruteForceOptimumOnAOneLaneStrip) {
       const double optimum_s = best[static_cast<std::size_t>(steps)];
       SCOPED_TRACE(std::to_string(length_m) + " m, endurance " + std::to_string(endurance_s));
       if (optimum_s >= 1e299) {
-        if (2.0 * (length_m - SweepWidthM(fleet)) / fleet.speed_mps > endurance_s) {
+        if (2.0 * (length_m - SweepWidthM(fleet)) / fleet.speed_mps + vertical_s > endurance_s) {
           EXPECT_THROW(PlanSearch(area, fleet), std::runtime_error);
         }
         continue;

@@ -19,8 +19,9 @@
 namespace fireswarm::run {
 namespace {
 
-// The runner tests' 800 m x 500 m area with a 200 s endurance: the planner needs
-// three sorties per drone; a fire to find on the way.
+// The runner tests' 800 m x 500 m area with a 280 s endurance (200 s at altitude
+// after the climb and descent): the planner needs three sorties per drone; a fire
+// to find on the way.
 constexpr double kSortieSwapS = 120.0;
 constexpr const char* kSortieScenario = R"(
 name: sorties
@@ -31,7 +32,7 @@ area:
 fleet:
   count: 2
   launch: {lat: 44.9995, lon: 7.005}
-  endurance_s: 200
+  endurance_s: 280
   swap_s: 120
 fires:
   - {lat: 45.00230, lon: 7.00480, start_s: 0}
@@ -191,7 +192,7 @@ area:
 fleet:
   count: 3
   launch: {lat: 44.9995, lon: 7.005}
-  endurance_s: 200
+  endurance_s: 280
   swap_s: 120
 faults:
   - {vehicle: 2, at_s: 330, kind: total_loss}

@@ -32,7 +32,14 @@ struct FleetSpec {
   double altitude_m = 60.0;      ///< above ground
   double speed_mps = 10.0;       ///< cruise speed along lanes and in transit
   double endurance_s = 1'800.0;  ///< flight time per sortie, reserve excluded
-  /// On the ground between two sorties: landing, battery swap, take-off.
+  /// Take-off climb to altitude_m and landing descent rates, m/s: every sortie
+  /// spends altitude_m / climb_mps + altitude_m / descent_mps going up and down
+  /// over its site (APOne: 3 m/s, safety.land_descent_mps 1 m/s), in its time and
+  /// out of its endurance.
+  double climb_mps = 3.0;
+  double descent_mps = 1.0;
+  /// On the ground between two sorties (battery swap, checks); the landing and
+  /// the take-off are climb_mps' and descent_mps'.
   double swap_s = 300.0;
   const common::CameraModel* camera = nullptr;
   double camera_pitch_deg = -90.0;  ///< mount pitch from the horizon, -90 = straight down
@@ -63,8 +70,8 @@ struct DronePlan {
   std::vector<Waypoint> waypoints;
   int sorties = 1;
   double length_m = 0.0;
-  /// From the first take-off to the last landing: flight plus the swaps between
-  /// sorties ((sorties - 1) * FleetSpec::swap_s).
+  /// From the first take-off to the last landing: flight (vertical_s included)
+  /// plus the swaps between sorties ((sorties - 1) * FleetSpec::swap_s).
   double time_s = 0.0;
   /// time_s split by what the drone does: flying lanes, turning at lane ends
   /// (turn_cost_s each), and flying anything else (lane-to-lane connections,
@@ -73,6 +80,7 @@ struct DronePlan {
   double turn_s = 0.0;
   double transit_s = 0.0;
   double ground_s = 0.0;          ///< on the ground between sorties
+  double vertical_s = 0.0;        ///< climbing after each take-off and descending to each landing
   double longest_sortie_s = 0.0;  ///< the longest single flight, <= FleetSpec::endurance_s
 };
 
