@@ -144,6 +144,10 @@ TEST_F(PlanCommand, BadFlagsExitTwoNamingTheFlagAndWriteNothing) {
       {" --drones 2 --altitude-m abc", "altitude-m"},
       {" --drones 2 --no-such-flag 1", "no-such-flag"},
       {" --drones 2 --swap-s -5", "--swap-s"},
+      {" --drones 2 --climb-mps 0", "--climb-mps"},
+      {" --drones 2 --descent-mps -1", "--descent-mps"},
+      // 60 m up at 3 m/s and down at 1 m/s take 80 s of the 60.
+      {" --drones 2 --endurance-s 60", "--endurance-s"},
       {" --drones 2 --launch 46.2,-74.6 --launch 46.2", "--launch"},
   };
   for (const auto& [flags, named] : cases) {
@@ -235,9 +239,9 @@ TEST_F(PlanCommand, HelpListsTheOptions) {
   const RunResult run = RunFireswarm("plan --help");
   EXPECT_EQ(run.exit_code, 0);
   const std::string text = JoinLines(run);
-  for (const char* flag :
-       {"--area", "--no-fly", "--drones", "--altitude-m", "--speed-mps", "--camera", "--planner",
-        "--out", "--qgc", "--json", "--launch", "--launch-file", "--swap-s"}) {
+  for (const char* flag : {"--area", "--no-fly", "--drones", "--altitude-m", "--speed-mps",
+                           "--camera", "--planner", "--out", "--qgc", "--json", "--launch",
+                           "--launch-file", "--swap-s", "--climb-mps", "--descent-mps"}) {
     EXPECT_THAT(text, HasSubstr(flag));
   }
 }
