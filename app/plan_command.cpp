@@ -19,6 +19,7 @@
 #include "fireswarm/planner/area_io.hpp"
 #include "fireswarm/planner/export.hpp"
 #include "fireswarm/planner/plan.hpp"
+#include "launch_flags.hpp"
 
 namespace fireswarm::app {
 namespace {
@@ -107,33 +108,6 @@ std::vector<int> ReceiverIds(const Flags& f) {
   return ids;
 }
 
-// The launch sites (--launch, each repeat one site, or --launch-file), in the
-// area's frame, and the drones per site when the file says.
-void SetLaunchSites(const Flags& f, const SearchArea& area, FleetSpec& fleet) {
-  auto local = [&area](const common::LatLon& position) {
-    const common::EastNorth en = area.frame.ToLocal(position);
-    return planner::Point{en.east_m, en.north_m};
-  };
-  if (!f.launch_file.empty()) {
-    const planner::LaunchSites sites = planner::LoadLaunchSites(f.launch_file);
-    for (const common::LatLon& position : sites.positions) {
-      fleet.launch_points.push_back(local(position));
-    }
-    fleet.site_drones = sites.drones;
-    return;
-  }
-  for (const std::string& text : f.launch) {
-    const std::optional<common::LatLon> launch = ParseLatLon(text);
-    if (!launch) {
-      BadFlag("launch",
-              "must be 'lat,lon' in degrees (lat in [-90, 90], lon in [-180, 180]), got '" + text +
-                  "'");
-    }
-    fleet.launch_points.push_back(local(*launch));
-  }
-  if (fleet.launch_points.empty()) fleet.launch_points.push_back(planner::DefaultLaunchPoint(area));
-}
-
 // Every flag's range, checked before any file is read or written.
 void CheckFlags(const Flags& f) {
   if (f.area.empty()) BadFlag("area", "is required (a GeoJSON file)");
@@ -147,9 +121,7 @@ void CheckFlags(const Flags& f) {
   if (!(f.swap_s >= 0)) BadFlag("swap-s", "must be >= 0, got " + Text(f.swap_s));
   if (!(f.climb_mps > 0)) BadFlag("climb-mps", "must be > 0, got " + Text(f.climb_mps));
   if (!(f.descent_mps > 0)) BadFlag("descent-mps", "must be > 0, got " + Text(f.descent_mps));
-  if (!f.launch.empty() && !f.launch_file.empty()) {
-    BadFlag("launch-file", "and --launch both give launch sites: use one of them");
-  }
+  CheckLaunchFlags("plan", f.launch, f.launch_file);
   if (!(f.overlap >= 0 && f.overlap < 1)) {
     BadFlag("overlap", "must be in [0, 1), got " + Text(f.overlap));
   }
@@ -175,7 +147,7 @@ void CheckFlags(const Flags& f) {
 FleetSpec ToFleet(const Flags& f, const SearchArea& area) {
   FleetSpec fleet;
   fleet.receiver_ids = ReceiverIds(f);
-  SetLaunchSites(f, area, fleet);
+  SetLaunchSites("plan", f.launch, f.launch_file, area, fleet);
   fleet.swap_s = f.swap_s;
   fleet.climb_mps = f.climb_mps;
   fleet.descent_mps = f.descent_mps;

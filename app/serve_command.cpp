@@ -22,6 +22,7 @@
 #include "fireswarm/server/lcm_bridge.hpp"
 #include "fireswarm/server/mission_manager.hpp"
 #include "fireswarm/server/server.hpp"
+#include "launch_flags.hpp"
 #include "link_flags.hpp"
 #include "serve_loop.hpp"
 #include "stop_signals.hpp"
@@ -44,9 +45,12 @@ struct Flags {
   std::string no_fly;
   int drones = 0;
   int first_id = 1;
-  std::string launch;
+  std::vector<std::string> launch;
+  std::string launch_file;
   double altitude_m = 60.0;
   double speed_mps = 10.0;
+  double endurance_s = 1'800.0;
+  double swap_s = 300.0;
   std::string camera = "seed";
   double telemetry_hz = 1.0;
   LinkFlags link;
@@ -73,10 +77,11 @@ void CheckFlags(const Flags& f, const po::variables_map& values) {
     BadFlag("first-id", "in 1..254 with every ID up to first-id + drones - 1 <= 254",
             std::to_string(f.first_id));
   }
-  if (!f.launch.empty() && !ParseLatLon(f.launch))
-    BadFlag("launch", "LAT,LON in degrees", f.launch);
+  CheckLaunchFlags(kName, f.launch, f.launch_file);
   if (!(f.altitude_m > 0.0)) BadFlag("altitude-m", "> 0", FlagText(f.altitude_m));
   if (!(f.speed_mps > 0.0)) BadFlag("speed-mps", "> 0", FlagText(f.speed_mps));
+  if (!(f.endurance_s > 0.0)) BadFlag("endurance-s", "> 0", FlagText(f.endurance_s));
+  if (!(f.swap_s >= 0.0)) BadFlag("swap-s", ">= 0", FlagText(f.swap_s));
   if (common::FindCameraModel(f.camera) == nullptr) {
     BadFlag("camera", common::CameraModelNames(), f.camera);
   }
@@ -92,11 +97,24 @@ void CheckFlags(const Flags& f, const po::variables_map& values) {
   }
 }
 
-// Where the fleet launches, local metres: --launch, or the area's default.
-planner::Point LaunchPoint(const Flags& f, const planner::SearchArea& area) {
-  if (f.launch.empty()) return planner::DefaultLaunchPoint(area);
-  const common::EastNorth local = area.frame.ToLocal(*ParseLatLon(f.launch));
-  return {local.east_m, local.north_m};
+std::vector<int> ReceiverIds(const Flags& f) {
+  std::vector<int> ids;
+  for (int i = 0; i < f.drones; ++i) ids.push_back(f.first_id + i);
+  return ids;
+}
+
+// The fleet the flags describe: its sites (--launch, repeated, or --launch-file;
+// the area's default), altitude, speed, camera and sorties.
+planner::FleetSpec FleetFor(const Flags& f, const planner::SearchArea& area) {
+  planner::FleetSpec fleet;
+  fleet.receiver_ids = ReceiverIds(f);
+  SetLaunchSites(kName, f.launch, f.launch_file, area, fleet);
+  fleet.altitude_m = f.altitude_m;
+  fleet.speed_mps = f.speed_mps;
+  fleet.endurance_s = f.endurance_s;
+  fleet.swap_s = f.swap_s;
+  fleet.camera = common::FindCameraModel(f.camera);
+  return fleet;
 }
 
 // `area`: the search area as planned, its no-fly zones (--no-fly and the area
@@ -113,25 +131,14 @@ server::ServerConfig ServerConfigFor(const Flags& f, const planner::SearchArea& 
   config.area = area.area;
   config.camera = common::CameraModelByName(f.camera);
   config.camera_pitch_deg = planner::FleetSpec{}.camera_pitch_deg;
-  const planner::Point launch = LaunchPoint(f, area);
+  // The published plan shows one site: the first.
+  const planner::Point launch = FleetFor(f, area).launch_points.front();
   config.launch_en_m = common::EastNorth{launch.x(), launch.y()};
   return config;
 }
 
-std::vector<int> ReceiverIds(const Flags& f) {
-  std::vector<int> ids;
-  for (int i = 0; i < f.drones; ++i) ids.push_back(f.first_id + i);
-  return ids;
-}
-
 std::vector<server::DroneMission> PlanMissions(const Flags& f, const planner::SearchArea& area) {
-  planner::FleetSpec fleet;
-  fleet.receiver_ids = ReceiverIds(f);
-  const planner::Point launch = LaunchPoint(f, area);
-  fleet.launch_points = {launch};
-  fleet.altitude_m = f.altitude_m;
-  fleet.speed_mps = f.speed_mps;
-  fleet.camera = common::FindCameraModel(f.camera);
+  const planner::FleetSpec fleet = FleetFor(f, area);
   planner::Plan plan;
   try {
     plan = planner::PlanSearch(area, fleet);
@@ -145,8 +152,20 @@ std::vector<server::DroneMission> PlanMissions(const Flags& f, const planner::Se
   line["event"] = "planned";
   line["drones"] = plan.drones.size();
   int sorties = 0;
-  for (const planner::DronePlan& drone : plan.drones) sorties += drone.sorties;
+  std::vector<int> site_drones(fleet.launch_points.size(), 0);
+  for (const planner::DronePlan& drone : plan.drones) {
+    sorties += drone.sorties;
+    ++site_drones.at(drone.site);
+  }
   line["sorties"] = sorties;
+  nlohmann::ordered_json sites = nlohmann::ordered_json::array();
+  for (std::size_t k = 0; k < fleet.launch_points.size(); ++k) {
+    const planner::Point& site = fleet.launch_points[k];
+    const common::LatLon position = area.frame.ToGeodetic({site.x(), site.y()});
+    sites.push_back(
+        {{"lat", position.lat_deg}, {"lon", position.lon_deg}, {"drones", site_drones[k]}});
+  }
+  line["sites"] = std::move(sites);
   line["coverage"] = plan.coverage;
   line["makespan_s"] = plan.makespan_s;
   std::cout << line.dump() << std::endl;
@@ -204,11 +223,19 @@ po::options_description OptionsFor(Flags& f) {
   add("drones", po::value(&f.drones), "number of vehicles, 1..254");
   add("first-id", po::value(&f.first_id)->default_value(f.first_id),
       "receiver ID of the first vehicle; the others follow");
-  add("launch", po::value(&f.launch)->value_name("LAT,LON"),
-      "launch site (default: the area's centroid, or its corner nearest to it)");
+  add("launch", po::value(&f.launch)->value_name("LAT,LON")->composing(),
+      "a launch site; repeat for several (the planner spreads the drones over them). Default: "
+      "the area's centroid, or its corner nearest to it");
+  add("launch-file", po::value(&f.launch_file)->value_name("FILE"),
+      "launch sites as GeoJSON Points, each with an optional integer property \"drones\"");
   add("altitude-m", po::value(&f.altitude_m)->default_value(f.altitude_m),
       "search altitude above ground, m");
   add("speed-mps", po::value(&f.speed_mps)->default_value(f.speed_mps), "cruise speed, m/s");
+  add("endurance-s", po::value(&f.endurance_s)->default_value(f.endurance_s),
+      "flight time per sortie, s; longer plans are flown in sorties with a battery swap "
+      "between them");
+  add("swap-s", po::value(&f.swap_s)->default_value(f.swap_s),
+      "time on the ground between two sorties (battery swap), s");
   add("camera", po::value(&f.camera)->default_value(f.camera),
       ("the fleet's thermal camera (sets the lane spacing): " + common::CameraModelNames())
           .c_str());

@@ -473,6 +473,48 @@ bool Mentions(const RunResult& run, const std::string& text) {
                      [&](const std::string& line) { return line.find(text) != std::string::npos; });
 }
 
+// Real operations launch from several road-side points and fly sorties: serve
+// plans with the sites given (--launch repeated, or a file fixing the drones per
+// site) and the endurance, and says so in its "planned" line.
+TEST_F(ServeCommand, PlansFromSeveralLaunchSitesInSorties) {
+  const std::string west = LatLonText(0, 0);
+  const std::string east = LatLonText(340, 0);
+  const std::string base = "serve --area " + area_ +
+                           " --drones 2 --udp 127.0.0.1:0 127.0.0.1:9 --start --duration-s 0.2 ";
+  const auto planned = [](const RunResult& run) {
+    for (const std::string& line : run.lines) {
+      const Json j = Json::parse(line, nullptr, false);
+      if (!j.is_discarded() && j.value("event", "") == "planned") return j;
+    }
+    return Json();
+  };
+  const RunResult repeated =
+      RunFireswarm(base + "--launch " + west + " --launch " + east + " --endurance-s 130");
+  ASSERT_EQ(repeated.exit_code, 0) << (repeated.lines.empty() ? "" : repeated.lines.back());
+  const Json plan = planned(repeated);
+  ASSERT_EQ(plan.at("sites").size(), 2U) << plan.dump();
+  EXPECT_NEAR(plan.at("sites")[1].at("lon").get<double>(),
+              std::stod(east.substr(east.find(',') + 1)), 1e-6);
+  EXPECT_EQ(
+      plan.at("sites")[0].at("drones").get<int>() + plan.at("sites")[1].at("drones").get<int>(), 2);
+  // 130 s of which 80 go up and down: more sorties than drones.
+  EXPECT_GT(plan.at("sorties").get<int>(), 2) << plan.dump();
+
+  const std::string sites = PathOf("sites.geojson");
+  std::ofstream(sites)
+      << R"({"type":"FeatureCollection","features":[)"
+      << R"({"type":"Feature","properties":{"drones":1},"geometry":{"type":"Point","coordinates":[)"
+      << east.substr(east.find(',') + 1) << "," << east.substr(0, east.find(','))
+      << R"(]}},{"type":"Feature","properties":{"drones":1},"geometry":{"type":"Point","coordinates":[)"
+      << west.substr(west.find(',') + 1) << "," << west.substr(0, west.find(',')) << "]}}]}";
+  const RunResult from_file = RunFireswarm(base + "--launch-file " + sites);
+  ASSERT_EQ(from_file.exit_code, 0) << (from_file.lines.empty() ? "" : from_file.lines.back());
+  const Json fixed = planned(from_file);
+  ASSERT_EQ(fixed.at("sites").size(), 2U) << fixed.dump();
+  EXPECT_EQ(fixed.at("sites")[0].at("drones"), 1);
+  EXPECT_EQ(fixed.at("sites")[1].at("drones"), 1);
+}
+
 TEST_F(ServeCommand, BadFlagsExitTwoNamingTheFlag) {
   const std::string link = " --udp 127.0.0.1:0 127.0.0.1:9";
   const std::string serve = "serve --area " + area_ + " --drones 2 --start";
@@ -491,6 +533,10 @@ TEST_F(ServeCommand, BadFlagsExitTwoNamingTheFlag) {
            {serve + " --mode token" + link, {"--mode"}},
            {serve + " --checksum sum" + link, {"--checksum"}},
            {serve + " --launch 95,7" + link, {"--launch"}},
+           {serve + " --launch 46.5,7.5 --launch 46.5" + link, {"--launch"}},
+           {serve + " --launch 46.5,7.5 --launch-file sites.geojson" + link, {"--launch-file"}},
+           {serve + " --endurance-s 0" + link, {"--endurance-s"}},
+           {serve + " --swap-s -1" + link, {"--swap-s"}},
            {serve + " --altitude-m -5" + link, {"--altitude-m"}},
            {serve + " --camera flir" + link, {"--camera"}},
            {serve + " --telemetry-hz 0" + link, {"--telemetry-hz"}},
