@@ -191,6 +191,27 @@ std::optional<CommandCredentials> ParseWebCredentials(const nlohmann::json& body
   return credentials;
 }
 
+nlohmann::json WebCredentialsJson(const CommandCredentials& credentials) {
+  static constexpr char kDigits[] = "0123456789abcdef";
+  const auto hex = [](std::span<const std::uint8_t> bytes) {
+    std::string text;
+    for (const std::uint8_t b : bytes) {
+      text += kDigits[b >> 4];
+      text += kDigits[b & 15];
+    }
+    return text;
+  };
+  std::array<std::uint8_t, 8> nonce{};
+  auto bits = static_cast<std::uint64_t>(credentials.nonce);
+  for (auto b = nonce.rbegin(); b != nonce.rend(); ++b, bits >>= 8) {
+    *b = static_cast<std::uint8_t>(bits);
+  }
+  return {{"operator", credentials.operator_id},
+          {"utime", credentials.utime},
+          {"nonce", hex(nonce)},
+          {"mac", hex(credentials.mac)}};
+}
+
 std::optional<OperatorCommand> ParseWebCommand(const nlohmann::json& body, std::string* why) {
   if (!body.is_object()) return Fail(why, "body: must be a JSON object"), std::nullopt;
   if (!KnownKeys(body, why)) return std::nullopt;

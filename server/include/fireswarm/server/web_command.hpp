@@ -35,5 +35,7 @@ std::optional<OperatorCommand> ParseWebCommand(const nlohmann::json& body, std::
 /// command count as 0 (and "") in the MAC's bytes. Returns nullopt with `why`
 /// naming the field ("auth.mac: must be 64 hex digits"). Never throws.
 std::optional<CommandCredentials> ParseWebCredentials(const nlohmann::json& body, std::string* why);
+/// `credentials` as the body's `auth` member (what ParseWebCredentials reads).
+nlohmann::json WebCredentialsJson(const CommandCredentials& credentials);
 
 }  // namespace fireswarm::server
