@@ -514,6 +514,11 @@ TEST_F(ServeCommand, TheCommandCenterShowsTheLinkAndStartsTheMission) {
   const RunResult run = serve.Finish(Clock::now() + kMissionDeadline);
   ASSERT_EQ(run.exit_code, 0) << (run.lines.empty() ? "" : run.lines.back());
   ExpectAllDone(SummaryOf(run));
+  // The unsigned start was journaled (serve prints every journal entry as a line).
+  EXPECT_TRUE(std::any_of(run.lines.begin(), run.lines.end(), [](const std::string& line) {
+    return line.find(R"("event":"command_refused")") != std::string::npos &&
+           line.find("malformed: auth: required") != std::string::npos;
+  }));
   sim.Signal(SIGTERM);
   EXPECT_EQ(sim.Finish(Clock::now() + kExitDeadline).exit_code, 0);
 }
