@@ -25,6 +25,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -43,6 +44,7 @@
 #include "fireswarm/run/scenario.hpp"
 #include "fireswarm/run/svg_map.hpp"
 #include "fireswarm/server/lcm_bridge.hpp"
+#include "fireswarm/server/operator_keys.hpp"
 #include "web_feed.hpp"
 #include "web_flags.hpp"
 
@@ -80,6 +82,7 @@ struct Flags {
   std::string lcm_url;  ///< LCM provider to publish on, empty = none
   WebFlags web;
   std::optional<double> pace;  ///< simulated s per wall s
+  std::string keys;            ///< key store whose operators may command the run (--http)
 };
 
 // --pace K: simulated time t is due at wall_start + t / K; a step ahead of that
@@ -239,8 +242,9 @@ void PrintSummary(const run::RunResult& result) {
 // Flies the scenario, publishing on LCM when `lcm` is given and serving the page
 // when `web` is; paced when `pace` is; a progress line on a terminal.
 run::RunResult Fly(const run::Scenario& scenario, RunLcmOutput* lcm, server::WebServer* web,
-                   std::optional<double> pace) {
+                   std::optional<double> pace, std::map<std::string, common::SecretKey> operators) {
   run::RunOptions run_options;
+  run_options.operators = std::move(operators);
   run::RunProgress last;
   std::chrono::steady_clock::time_point drawn{};
   if (isatty(STDERR_FILENO) != 0) {
@@ -288,8 +292,13 @@ int RunRun(const std::vector<std::string>& args) {
   add("log", po::value(&f.log)->value_name("FILE"),
       "write an LCM log (for lcm-logplayer) of what the server publishes; utime = simulated us");
   add("lcm", po::value(&f.lcm_url)->value_name("URL"),
-      "publish the same on LCM as the run goes (memq://, udpm://239.255.76.67:7667?ttl=0, ...)");
+      (std::string("publish the same on LCM as the run goes (memq://, ") + server::kDefaultLcmUrl +
+       ", ...)")
+          .c_str());
   AddWebOptions(options, f.web);
+  add("keys", po::value(&f.keys)->value_name("DIR"),
+      "fleet key store: the page's commands (--http) must be signed with a key in "
+      "DIR/operators/NAME.key (without it every command is refused)");
   add("pace", po::value<double>()->notifier([&f](double v) { f.pace = v; })->value_name("K"),
       "run simulated time at K times the wall clock (e.g. 1 to watch a run live on --http)");
   add("scenario", po::value(&f.scenario)->required(), "the scenario file (YAML)");
@@ -298,7 +307,7 @@ int RunRun(const std::vector<std::string>& args) {
   po::variables_map values;
   if (!ParseCommandLine(kName,
                         "SCENARIO.yaml [--report out.json] [--junit out.xml] [--svg map.svg] "
-                        "[--log out.lcmlog] [--lcm URL] [--http HOST:PORT [--pace K]]",
+                        "[--log out.lcmlog] [--lcm URL] [--http HOST:PORT [--pace K] [--keys DIR]]",
                         options, positional, args, values)) {
     return kExitOk;
   }
@@ -310,8 +319,19 @@ int RunRun(const std::vector<std::string>& args) {
   try {
     scenario = run::LoadScenario(f.scenario);
     if (!f.log.empty() || !f.lcm_url.empty()) lcm.emplace(f.log, f.lcm_url);
+    std::map<std::string, common::SecretKey> operators;
+    if (!f.keys.empty()) {
+      try {
+        operators = server::LoadOperatorKeys(f.keys);
+      } catch (const std::runtime_error& e) {
+        throw UsageError(std::string("fireswarm run: --keys: ") + e.what());
+      }
+    } else if (!f.web.http.empty()) {
+      std::cerr << "fireswarm run: WARNING: no --keys: every command from the page is refused"
+                << std::endl;
+    }
     const std::unique_ptr<server::WebServer> web = StartWebServer(kName, f.web, false);
-    result = Fly(scenario, lcm ? &*lcm : nullptr, web.get(), f.pace);
+    result = Fly(scenario, lcm ? &*lcm : nullptr, web.get(), f.pace, std::move(operators));
   } catch (const run::ScenarioError& e) {
     throw UsageError(std::string("fireswarm run: ") + e.what());
   }

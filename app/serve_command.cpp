@@ -21,6 +21,7 @@
 #include "fireswarm/server/journal_format.hpp"
 #include "fireswarm/server/lcm_bridge.hpp"
 #include "fireswarm/server/mission_manager.hpp"
+#include "fireswarm/server/operator_keys.hpp"
 #include "fireswarm/server/server.hpp"
 #include "launch_flags.hpp"
 #include "link_flags.hpp"
@@ -58,6 +59,7 @@ struct Flags {
   std::string log;
   std::string csv;
   std::string journal;
+  std::string keys;
   bool start = false;
   std::optional<double> duration_s;
   bool until_complete = false;
@@ -94,6 +96,12 @@ void CheckFlags(const Flags& f, const po::variables_map& values) {
     throw UsageError(
         "fireswarm serve: give --start, or --lcm URL or --http HOST:PORT to wait for an "
         "operator's START (otherwise the mission would never start)");
+  }
+  if (!f.start && f.keys.empty()) {
+    throw UsageError(
+        "fireswarm serve: without --start, give --keys DIR: an operator's START must be signed "
+        "with a key in DIR/operators/ (otherwise every command is refused and the mission would "
+        "never start)");
   }
 }
 
@@ -134,7 +142,29 @@ server::ServerConfig ServerConfigFor(const Flags& f, const planner::SearchArea& 
   // The published plan shows one site: the first.
   const planner::Point launch = FleetFor(f, area).launch_points.front();
   config.launch_en_m = common::EastNorth{launch.x(), launch.y()};
+  if (!f.keys.empty()) {
+    try {
+      config.operators = server::LoadOperatorKeys(f.keys);
+    } catch (const std::runtime_error& e) {
+      throw UsageError(std::string("fireswarm serve: --keys: ") + e.what());
+    }
+  }
   return config;
+}
+
+// Operator commands come in signed only (docs/lcm.md): say at the start which
+// operators may command, or loudly that nobody can.
+void PrintOperators(const Flags& f, const server::ServerConfig& config) {
+  if (f.lcm_url.empty() && f.web.http.empty()) return;
+  if (config.operators.empty()) {
+    std::cerr << "fireswarm serve: WARNING: no --keys: every operator command (LCM and --http) "
+                 "is refused; give --keys DIR with DIR/operators/NAME.key to take them"
+              << std::endl;
+    return;
+  }
+  std::cerr << "fireswarm serve: operator commands signed by";
+  for (const auto& [id, key] : config.operators) std::cerr << ' ' << id;
+  std::cerr << " (window +-" << config.command_window_us / 1'000'000 << " s)" << std::endl;
 }
 
 std::vector<server::DroneMission> PlanMissions(const Flags& f, const planner::SearchArea& area) {
@@ -243,12 +273,16 @@ po::options_description OptionsFor(Flags& f) {
       "telemetry turns per vehicle and second");
   AddLinkOptions(options, f.link);
   add("lcm", po::value(&f.lcm_url)->value_name("URL"),
-      "publish on LCM and take operator commands there, e.g. udpm://239.255.76.67:7667?ttl=0 "
-      "(default: no LCM network)");
+      (std::string("publish on LCM and take signed operator commands there, e.g. ") +
+       server::kDefaultLcmUrl + " (host-local; default: no LCM network)")
+          .c_str());
   add("log", po::value(&f.log)->value_name("FILE"), "write an LCM log for lcm-logplayer");
   add("csv", po::value(&f.csv)->value_name("DIR"), "write one CSV per message type into DIR");
   add("journal", po::value(&f.journal)->value_name("FILE"),
       "append mission state and fire reports here; an existing journal is resumed");
+  add("keys", po::value(&f.keys)->value_name("DIR"),
+      "fleet key store: operator commands (LCM, --http) must be signed with a key in "
+      "DIR/operators/NAME.key (without it every command is refused)");
   add("start", po::bool_switch(&f.start),
       "start the mission at once (default: wait for an operator START on LCM)");
   add("duration-s", po::value<double>()->notifier([&f](double v) { f.duration_s = v; }),
@@ -267,7 +301,7 @@ int RunServe(const std::vector<std::string>& args) {
   po::variables_map values;
   if (!ParseCommandLine(kName,
                         "--area A.geojson --drones N (--serial DEVICE | --udp LOCAL REMOTE) "
-                        "(--start | --lcm URL) [options]",
+                        "(--start | --keys DIR (--lcm URL | --http HOST:PORT)) [options]",
                         options, {}, args, values)) {
     return kExitOk;
   }
@@ -275,6 +309,7 @@ int RunServe(const std::vector<std::string>& args) {
   const planner::SearchArea area = planner::LoadSearchArea(
       f.area, f.no_fly.empty() ? std::nullopt : std::optional<fs::path>(f.no_fly));
   const server::ServerConfig config = ServerConfigFor(f, area);
+  PrintOperators(f, config);
 
   // The journal first: a resumed mission needs no plan.
   std::vector<server::JournalEntry> entries;

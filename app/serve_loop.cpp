@@ -4,6 +4,8 @@
 #include <chrono>
 #include <iostream>
 #include <string>
+#include <utility>
+#include <variant>
 #include <vector>
 
 #include "fireswarm/common/time.hpp"
@@ -98,15 +100,26 @@ void ServeLoop::CountFrames(const radio::Burst& burst) {
 
 void ServeLoop::HandleOperatorCommands(Nanos now) {
   if (bridge_ == nullptr) return;
-  for (const server::OperatorCommand& command : bridge_->TakeCommands()) {
-    std::string why;
-    const bool accepted = server_.Handle(command, now, &why);
+  for (server::IncomingCommand& incoming : bridge_->TakeCommands()) {
     nlohmann::ordered_json line;
     line["event"] = "operator_command";
     line["t_s"] = common::ToSeconds(now);
-    line["command"] = static_cast<int>(command.kind);
-    line["accepted"] = accepted;
-    if (!accepted) line["why"] = why;
+    if (auto* refused = std::get_if<server::CommandRefused>(&incoming)) {
+      line["command"] = refused->command;
+      line["operator"] = refused->operator_id;
+      line["accepted"] = false;
+      line["why"] = refused->why;
+      server_.Refuse(std::move(*refused), now);
+    } else {
+      const auto& command = std::get<server::SignedCommand>(incoming);
+      std::string why;
+      // The window is on the LCM clock: the Unix-epoch wall clock (docs/lcm.md).
+      const bool accepted = server_.HandleSigned(command, now, UnixMicros(), &why);
+      line["command"] = static_cast<int>(command.command.kind);
+      line["operator"] = command.credentials.operator_id.substr(0, server::kMaxOperatorIdBytes);
+      line["accepted"] = accepted;
+      if (!accepted) line["why"] = why;
+    }
     std::cout << line.dump() << std::endl;
   }
 }

@@ -20,6 +20,7 @@ constexpr double kCoveragePeriodS = 1.0;
 constexpr int kCoveragePeriodMs = 1000;  // ... and of the wall clock
 constexpr int kAccepted = 202;
 constexpr int kBadRequest = 400;
+constexpr int kUnauthorized = 401;
 constexpr int kConflict = 409;
 
 server::CommandCenterConfig ModelConfig(const std::string& source) {
@@ -69,7 +70,7 @@ void WebFeed::Step(server::Server& server, common::Nanos now, std::int64_t utime
   // clock. The thread's CPU clock, a system call, is read only around work.
   if (commands.empty() && messages.empty() && !update_due && !web_.snapshot_wanted()) return;
   const double cpu_start_s = CpuSeconds(CLOCK_THREAD_CPUTIME_ID);
-  Answer(server, now, commands, messages);
+  Answer(server, now, utime, commands, messages);
   if (update_due) {
     next_update_s_ = now_s + kUpdatePeriodS;
     next_update_wall_ = wall + std::chrono::milliseconds(kUpdatePeriodMs);
@@ -98,19 +99,30 @@ nlohmann::json WebFeed::CpuFigures() const {
           {"share", process_cpu_s > 0.0 ? web_cpu_s / process_cpu_s : 0.0}};
 }
 
-void WebFeed::Answer(server::Server& server, common::Nanos now,
+void WebFeed::Answer(server::Server& server, common::Nanos now, std::int64_t utime,
                      const std::vector<server::PendingCommand>& commands,
                      const std::vector<server::ClientMessage>& messages) {
   for (const server::PendingCommand& pending : commands) {
     std::string why;
     const std::optional<server::OperatorCommand> command =
         server::ParseWebCommand(pending.body, &why);
+    const std::optional<server::CommandCredentials> credentials =
+        command ? server::ParseWebCredentials(pending.body, &why) : std::nullopt;
     int status = kAccepted;
     std::int32_t command_id = 0;
+    server::CommandVerdict verdict = server::CommandVerdict::kAccepted;
     if (!command) {
       status = kBadRequest;
-    } else if (!server.Handle(*command, now, &why, &command_id)) {
-      status = kConflict;
+    } else if (!credentials) {
+      // Unsigned: journaled and counted like every refusal of an unread command.
+      status = kUnauthorized;
+      why = "malformed: " + why;
+      server.Refuse({server::CommandVerdict::kMalformed, static_cast<int>(command->kind),
+                     command->vehicle, "", 0, 0, why},
+                    now);
+    } else if (!server.HandleSigned({*command, *credentials}, now, utime, &why, &command_id,
+                                    &verdict)) {
+      status = verdict == server::CommandVerdict::kAccepted ? kConflict : kUnauthorized;
     }
     if (status == kAccepted) {
       // The server's command ID: the one command_status_t and the state's

@@ -10,8 +10,10 @@
 // waits for its snapshot or a GET /api/state for the state (at 250 drones the
 // state is several times the delta's size; WebServer::HoldSnapshots). At every
 // step the page's commands are parsed (ParseWebCommand) and handed to
-// Server::Handle at that time, the same entry point as LCM's operator commands,
-// and answered: 202 queued, 400 or 409 with why. Each delta and state document
+// Server::HandleSigned at that time with their signature (ParseWebCredentials),
+// the same entry point as LCM's operator commands, and answered: 202 queued, 400
+// unreadable, 401 unsigned or refused by the verifier (why names the verdict),
+// 409 refused by the server core. Each delta and state document
 // carries `built_unix_ms`, the wall clock when it was built (the page measures
 // its state-to-screen latency with it).
 #pragma once
@@ -54,9 +56,10 @@ class WebFeed {
   nlohmann::json CpuFigures() const;
 
  private:
-  // Hands the page's commands to the server and answers them; answers client
+  // Hands the page's commands to the server (`utime`: now on the LCM clock, for
+  // the signatures' window) and answers them; answers client
   // messages (live, there are no replay controls).
-  void Answer(server::Server& server, common::Nanos now,
+  void Answer(server::Server& server, common::Nanos now, std::int64_t utime,
               const std::vector<server::PendingCommand>& commands,
               const std::vector<server::ClientMessage>& messages);
   void Update(const server::Server& server, double now_s, std::int64_t utime,

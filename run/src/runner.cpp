@@ -14,6 +14,7 @@
 
 #include "fireswarm/agents/params.hpp"
 #include "fireswarm/agents/vehicle.hpp"
+#include "fireswarm/common/secret_key.hpp"
 #include "fireswarm/common/time.hpp"
 #include "fireswarm/hil/sim_bridge.hpp"
 #include "fireswarm/planner/plan.hpp"
@@ -60,8 +61,16 @@ radio::RadioStep RadioSideOf(agents::Vehicle& vehicle, std::vector<SilentWindow>
   };
 }
 
-server::ServerConfig MakeServerConfig(const Scenario& scenario) {
+// The runner's own operator: it signs the mission's start with a key made for
+// this run only (kept in memory), through the same check as an operator's.
+constexpr const char* kRunnerOperator = "runner";
+constexpr std::int64_t kStartNonce = 1;
+
+server::ServerConfig MakeServerConfig(const Scenario& scenario, const RunOptions& options,
+                                      const common::SecretKey& runner_key) {
   server::ServerConfig config;
+  config.operators = options.operators;
+  config.operators[kRunnerOperator] = runner_key;
   config.radio.mode = scenario.radio.mode;
   config.radio.checksum = scenario.radio.checksum;
   config.radio.timing.baud = scenario.radio.baud;
@@ -136,12 +145,13 @@ PlannedMissions PlanMissions(const Scenario& scenario) {
 class Lockstep {
  public:
   Lockstep(const Scenario& scenario, const std::vector<FireSpec>& fires,
-           const PlannedMissions& planned)
-      : simulation_(internal::MakeSimulationConfig(
+           const PlannedMissions& planned, const RunOptions& options)
+      : runner_key_(common::GenerateSecretKey()),
+        simulation_(internal::MakeSimulationConfig(
             scenario, fires, internal::StandPositions(scenario, planned.missions, planned.sites))),
         sorties_planned_(planned.sorties),
         fleet_(simulation_),
-        server_config_(MakeServerConfig(scenario)),
+        server_config_(MakeServerConfig(scenario, options, runner_key_)),
         frame_(scenario.area.frame),
         server_(std::make_unique<server::Server>(server_config_, frame_)),
         // Through server_, which a restart replaces.
@@ -172,7 +182,10 @@ class Lockstep {
     }
     server_->LoadMission(planned.missions);
     std::string why;
-    if (!server_->Handle(server::OperatorCommand{}, Nanos{0}, &why)) {
+    // utime: simulated microseconds since the start (docs/lcm.md), 0 now.
+    const server::SignedCommand start = server::SignCommand(
+        server::OperatorCommand{}, kRunnerOperator, runner_key_, 0, kStartNonce);
+    if (!server_->HandleSigned(start, Nanos{0}, 0, &why)) {
       throw std::logic_error("runner: the server refused to start the mission: " + why);
     }
   }
@@ -259,6 +272,7 @@ class Lockstep {
   }
 
  private:
+  common::SecretKey runner_key_;  // signs the start; first: the server's config holds it
   sim2d::Simulation simulation_;
   std::map<int, int> sorties_planned_;
   hil::LockstepFleet fleet_;
@@ -322,7 +336,7 @@ RunResult RunScenario(const Scenario& scenario, const RunOptions& options) {
   const auto wall_start = std::chrono::steady_clock::now();
   const std::vector<FireSpec> fires = internal::ExpandFires(scenario);
   const PlannedMissions planned = PlanMissions(scenario);
-  Lockstep run(scenario, fires, planned);
+  Lockstep run(scenario, fires, planned, options);
 
   internal::Scorer scorer(scenario, fires);
 

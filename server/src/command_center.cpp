@@ -186,6 +186,12 @@ void CommandCenter::OnRadioStats(const radio_stats_t& message) {
 
 void CommandCenter::OnCommandStatus(const command_status_t& message) {
   UpdateTime(message.utime);
+  // A refused command (ID 0, `refusal` says why: docs/lcm.md) has no record to
+  // follow; a replayed log's refusals count as the live page's did.
+  if (message.command_id == 0 && !message.refusal.empty()) {
+    NoteRefused();
+    return;
+  }
   nlohmann::json row = internal::CommandRow(message);
   auto& kept = commands_[message.command_id];
   if (kept != row) {

@@ -108,6 +108,14 @@ void CommandLog::Advance(std::int32_t command_id, std::uint8_t vehicle, TargetSt
   }
 }
 
+void CommandLog::Attribute(std::int32_t command_id, std::string operator_id, std::int64_t nonce) {
+  CommandRecord* record = FindMutable(command_id);
+  if (record == nullptr) return;
+  record->operator_id = std::move(operator_id);
+  record->nonce = nonce;
+  record->version = ++version_;
+}
+
 void CommandLog::Reserve(std::int32_t id) {
   next_id_ = std::max(next_id_, id + 1);
 }

@@ -137,7 +137,28 @@ CommandAccepted CommandFrom(const nlohmann::json& data) {
   c.point = {data.at("lat_deg").get<double>(), data.at("lon_deg").get<double>()};
   c.reason = data.at("reason").get<std::string>();
   c.command_id = data.value("command_id", std::int32_t{0});
+  c.operator_id = data.value("operator_id", std::string());
+  c.utime = data.value("utime", std::int64_t{0});
+  c.nonce = data.value("nonce", std::int64_t{0});
   return c;
+}
+
+CommandRefused RefusalFrom(const nlohmann::json& data) {
+  CommandRefused r;
+  const std::string verdict = data.at("verdict").get<std::string>();
+  for (int v = static_cast<int>(CommandVerdict::kMalformed);
+       v <= static_cast<int>(CommandVerdict::kReplayed); ++v) {
+    if (verdict == ToString(static_cast<CommandVerdict>(v)))
+      r.verdict = static_cast<CommandVerdict>(v);
+  }
+  if (verdict != ToString(r.verdict)) throw std::runtime_error("unknown verdict '" + verdict + "'");
+  r.command = data.at("command").get<int>();
+  r.vehicle = data.at("vehicle").get<int>();
+  r.operator_id = data.at("operator_id").get<std::string>();
+  r.utime = data.at("utime").get<std::int64_t>();
+  r.nonce = data.at("nonce").get<std::int64_t>();
+  r.why = data.at("why").get<std::string>();
+  return r;
 }
 
 // The event of a record of `kind`; throws nlohmann::json::exception for a bad
@@ -198,6 +219,7 @@ JournalEvent EventFrom(const std::string& kind, const nlohmann::json& data) {
   if (kind == "recall") {
     return DroneRecalled{data.at("vehicle").get<std::uint8_t>(), data.at("why").get<std::string>()};
   }
+  if (kind == "command_refused") return RefusalFrom(data);
   throw std::runtime_error("unknown kind");
 }
 
@@ -216,7 +238,8 @@ std::string JournalKindOf(const JournalEntry& entry) {
                  [](const InvestigationOpened&) -> std::string { return "investigation"; },
                  [](const InvestigationNotSent&) -> std::string { return "no_investigation"; },
                  [](const DroneRecalled&) -> std::string { return "recall"; },
-                 [](const SortieMoved&) -> std::string { return "sortie_moved"; }},
+                 [](const SortieMoved&) -> std::string { return "sortie_moved"; },
+                 [](const CommandRefused&) -> std::string { return "command_refused"; }},
       entry.event);
 }
 
@@ -236,6 +259,12 @@ nlohmann::json JournalDataOf(const JournalEntry& entry) {
                                       {"lon_deg", e.point.lon_deg},
                                       {"reason", e.reason}};
             if (e.command_id > 0) command["command_id"] = e.command_id;
+            // Only for signed commands, so the server's own read as before.
+            if (!e.operator_id.empty()) {
+              command["operator_id"] = e.operator_id;
+              command["utime"] = e.utime;
+              command["nonce"] = e.nonce;
+            }
             return command;
           },
           [](const PhaseChanged& e) -> nlohmann::json {
@@ -275,6 +304,15 @@ nlohmann::json JournalDataOf(const JournalEntry& entry) {
           },
           [](const SortieMoved& e) -> nlohmann::json {
             return {{"from", e.from}, {"taker", MissionsJson({e.taker}).front()}};
+          },
+          [](const CommandRefused& e) -> nlohmann::json {
+            return {{"verdict", ToString(e.verdict)},
+                    {"command", e.command},
+                    {"vehicle", e.vehicle},
+                    {"operator_id", e.operator_id},
+                    {"utime", e.utime},
+                    {"nonce", e.nonce},
+                    {"why", e.why}};
           }},
       entry.event);
   if (entry.radio_seq) data[kRadioSequenceKey] = *entry.radio_seq;

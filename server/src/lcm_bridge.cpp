@@ -1,8 +1,10 @@
 // The LCM adapter: the one place the server core meets lcm::LCM and log files.
 #include "fireswarm/server/lcm_bridge.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <deque>
 #include <lcm/lcm-cpp.hpp>
 #include <limits>
 #include <sstream>
@@ -157,9 +159,13 @@ void LcmBridge::OnCommandMessage(const lcm::ReceiveBuffer*, const std::string&,
   // An LCM callback: never throws.
   std::string why;
   if (const std::optional<OperatorCommand> command = FromLcm(*message, &why)) {
-    commands_.push_back(*command);
+    commands_.emplace_back(SignedCommand{*command, CredentialsFromLcm(*message)});
   } else {
     ++rejected_commands_;
+    commands_.emplace_back(CommandRefused{CommandVerdict::kMalformed, message->command,
+                                          message->target_vehicle,
+                                          message->operator_id.substr(0, kMaxOperatorIdBytes),
+                                          message->utime, message->nonce, "malformed: " + why});
   }
 }
 
@@ -195,6 +201,14 @@ void LcmBridge::Publish(const Server& server, double now_s, std::int64_t utime,
     }
     commands_version_ = server.commands_version();
   }
+  // Refusals once each, those still kept (Server::kKeptRefusals).
+  const std::deque<CommandRefused>& refusals = server.recent_refusals();
+  const std::uint64_t first_kept = server.refusal_count() - refusals.size();
+  for (std::uint64_t n = std::max(refusals_published_, first_kept); n < server.refusal_count();
+       ++n) {
+    Emit(kCommandStatusChannel, ToCommandStatus(refusals[n - first_kept], utime), utime);
+  }
+  refusals_published_ = server.refusal_count();
   const LcmRates& rates = config_.rates;
   const auto due = [&](const char* channel, double hz) {
     double& next = next_s_[channel];
@@ -227,7 +241,7 @@ void LcmBridge::Publish(const Server& server, double now_s, std::int64_t utime,
   }
 }
 
-std::vector<OperatorCommand> LcmBridge::TakeCommands() {
+std::vector<IncomingCommand> LcmBridge::TakeCommands() {
   if (lcm_) {
     while (lcm_->handleTimeout(0) > 0) {
     }

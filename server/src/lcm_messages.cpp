@@ -160,6 +160,15 @@ radio_stats_t ToRadioStats(const Server& server, double now_s, std::int64_t utim
   m.collisions = 0;  // a receiver cannot tell a collision from a loss
   m.retries = static_cast<std::int64_t>(stats.retries);
   m.timeouts = static_cast<std::int64_t>(stats.missed_replies);
+  const auto refused = [&](CommandVerdict verdict) {
+    return static_cast<std::int64_t>(
+        server.command_refusals().at(static_cast<std::size_t>(verdict)));
+  };
+  m.commands_malformed = refused(CommandVerdict::kMalformed);
+  m.commands_unknown_operator = refused(CommandVerdict::kUnknownOperator);
+  m.commands_bad_mac = refused(CommandVerdict::kBadMac);
+  m.commands_stale = refused(CommandVerdict::kStale);
+  m.commands_replayed = refused(CommandVerdict::kReplayed);
   for (const std::uint8_t id : server.registry().ids()) {
     m.vehicle_ids.push_back(id);
     m.telemetry_age_s.push_back(server.registry().TelemetryAgeS(id, now_s).value_or(-1.0));
@@ -239,6 +248,42 @@ command_status_t ToCommandStatus(const CommandRecord& record, std::int64_t utime
     m.target_states.push_back(static_cast<std::int8_t>(target.state));
   }
   m.target_count = static_cast<std::int16_t>(m.target_ids.size());
+  m.operator_id = record.operator_id;
+  m.nonce = record.nonce;
+  return m;
+}
+
+command_status_t ToCommandStatus(const CommandRefused& refusal, std::int64_t utime) {
+  command_status_t m{};
+  m.utime = utime;
+  m.command_id = 0;
+  m.command = static_cast<std::int8_t>(refusal.command);
+  m.issued_utime = utime;
+  m.target_count = 0;
+  m.operator_id = refusal.operator_id;
+  m.nonce = refusal.nonce;
+  m.refusal = refusal.why;
+  return m;
+}
+
+CommandCredentials CredentialsFromLcm(const operator_command_t& message) {
+  CommandCredentials credentials{message.operator_id, message.utime, message.nonce, {}};
+  std::copy(std::begin(message.mac), std::end(message.mac), credentials.mac.begin());
+  return credentials;
+}
+
+operator_command_t ToLcm(const SignedCommand& command) {
+  operator_command_t m{};
+  m.utime = command.credentials.utime;
+  m.command = static_cast<std::int8_t>(command.command.kind);
+  m.target_vehicle = command.command.vehicle;
+  m.lat_deg = command.command.point.lat_deg;
+  m.lon_deg = command.command.point.lon_deg;
+  m.radius_m = command.command.radius_m;
+  m.reason = command.command.reason;
+  m.operator_id = command.credentials.operator_id;
+  m.nonce = command.credentials.nonce;
+  std::copy(command.credentials.mac.begin(), command.credentials.mac.end(), std::begin(m.mac));
   return m;
 }
 

@@ -116,7 +116,8 @@ Server::Server(const ServerConfig& config, const common::LocalFrame& frame)
       scheduler_(std::make_unique<radio::MasterScheduler>(config.radio)),
       registry_(config.link),
       fusion_(config.fusion),
-      investigations_(InvestigationsConfigOf(config_), frame_, transit_.get()) {
+      investigations_(InvestigationsConfigOf(config_), frame_, transit_.get()),
+      verifier_(config_.operators, config_.command_window_us) {
   if (!config_.area.empty()) coverage_.emplace(config_.area, config_.no_fly);
 }
 

@@ -4,6 +4,7 @@
 #include <optional>
 #include <string>
 #include <utility>
+#include <variant>
 #include <vector>
 
 #include "fireswarm/common/time.hpp"
@@ -40,17 +41,89 @@ radio::CommandType RadioCommandOf(Kind kind) {
   return radio::CommandType::kHold;
 }
 
+// The refusal HandleSigned journals for `verdict`, its text naming the reason.
+CommandRefused RefusalOf(const SignedCommand& command, CommandVerdict verdict,
+                         std::int64_t now_utime, const CommandVerifier& verifier) {
+  const CommandCredentials& c = command.credentials;
+  CommandRefused refusal{verdict,
+                         static_cast<int>(command.command.kind),
+                         command.command.vehicle,
+                         c.operator_id.substr(0, kMaxOperatorIdBytes),
+                         c.utime,
+                         c.nonce,
+                         {}};
+  const std::string who = "operator '" + refusal.operator_id + "'";
+  std::string why = ToString(verdict);
+  switch (verdict) {
+    case CommandVerdict::kMalformed:
+      why +=
+          ": the operator ID must be 1..64 of A-Z a-z 0-9 _ . - and the reason at most 65535 "
+          "bytes";
+      break;
+    case CommandVerdict::kUnknownOperator:
+      why += verifier.operator_count() == 0
+                 ? ": no operator keys are loaded (serve --keys DIR): every command is refused"
+                 : ": no key for " + who + " in the key store";
+      break;
+    case CommandVerdict::kBadMac:
+      why +=
+          ": the MAC does not match " + who + "'s key (forged, altered or signed with another key)";
+      break;
+    case CommandVerdict::kStale:
+      why += ": utime " + std::to_string(c.utime) + " is outside the window of +-" +
+             std::to_string(verifier.window_us() / 1'000'000) + " s around the server's clock (" +
+             std::to_string(now_utime) + ")";
+      break;
+    case CommandVerdict::kReplayed:
+      why += ": " + who + " already used nonce " + std::to_string(c.nonce) + " within the window";
+      break;
+    case CommandVerdict::kAccepted:
+      break;
+  }
+  refusal.why = std::move(why);
+  return refusal;
+}
+
 }  // namespace
 
 bool Server::Handle(const OperatorCommand& command, common::Nanos now, std::string* why,
                     std::int32_t* command_id) {
+  return Carry(command, now, why, command_id, nullptr);
+}
+
+bool Server::HandleSigned(const SignedCommand& command, common::Nanos now, std::int64_t now_utime,
+                          std::string* why, std::int32_t* command_id, CommandVerdict* verdict) {
+  const CommandVerdict checked = verifier_.Verify(command, now_utime);
+  if (verdict != nullptr) *verdict = checked;
+  if (checked == CommandVerdict::kAccepted) {
+    return Carry(command.command, now, why, command_id, &command.credentials);
+  }
+  CommandRefused refusal = RefusalOf(command, checked, now_utime, verifier_);
+  if (why != nullptr) *why = refusal.why;
+  Refuse(std::move(refusal), now);
+  return false;
+}
+
+void Server::Refuse(CommandRefused refusal, common::Nanos now) {
+  ++command_refusals_.at(static_cast<std::size_t>(refusal.verdict));
+  ++refusal_count_;
+  if (refusal.operator_id.size() > kMaxOperatorIdBytes) {
+    refusal.operator_id.resize(kMaxOperatorIdBytes);
+  }
+  recent_refusals_.push_back(refusal);
+  if (recent_refusals_.size() > kKeptRefusals) recent_refusals_.pop_front();
+  Record(common::ToSeconds(now), std::move(refusal));
+}
+
+bool Server::Carry(const OperatorCommand& command, common::Nanos now, std::string* why,
+                   std::int32_t* command_id, const CommandCredentials* signer) {
   const double now_s = common::ToSeconds(now);
   std::int32_t id = 0;
   std::optional<std::string> refusal;
   const auto accept = [&](std::vector<std::uint8_t> targets) {
     id = commands_.Open(command.kind, now_s, command.reason, std::move(targets));
-    Record(now_s,
-           CommandAccepted{command.kind, command.vehicle, command.point, command.reason, id});
+    Record(now_s, CommandAccepted{
+                      command.kind, command.vehicle, command.point, command.reason, id, {}, 0, 0});
   };
   switch (command.kind) {
     case Kind::kStart:
@@ -87,7 +160,7 @@ bool Server::Handle(const OperatorCommand& command, common::Nanos now, std::stri
       }
       accept(registry_.ids());
       SendToAll(RadioCommandOf(command.kind), id);
-      CallOff(CommandAccepted{command.kind, 0, {}, {}, id}, now_s);
+      CallOff(CommandAccepted{command.kind, 0, {}, {}, id, {}, 0, 0}, now_s);
       break;
     case Kind::kHold:
     case Kind::kResume:
@@ -107,8 +180,22 @@ bool Server::Handle(const OperatorCommand& command, common::Nanos now, std::stri
     if (why != nullptr) *why = std::move(*refusal);
     return false;
   }
+  if (signer != nullptr) Attribute(id, *signer);
   if (command_id != nullptr) *command_id = id;
   return true;
+}
+
+void Server::Attribute(std::int32_t command_id, const CommandCredentials& signer) {
+  commands_.Attribute(command_id, signer.operator_id, signer.nonce);
+  // The command's journal entry, recorded just now, names its signer too.
+  for (auto entry = journal_.rbegin(); entry != journal_.rend(); ++entry) {
+    auto* accepted = std::get_if<CommandAccepted>(&entry->event);
+    if (accepted == nullptr || accepted->command_id != command_id) continue;
+    accepted->operator_id = signer.operator_id;
+    accepted->utime = signer.utime;
+    accepted->nonce = signer.nonce;
+    break;
+  }
 }
 
 std::optional<std::string> Server::HandleDroneOrder(const OperatorCommand& command, double now_s,
@@ -119,7 +206,8 @@ std::optional<std::string> Server::HandleDroneOrder(const OperatorCommand& comma
     return "vehicle " + std::to_string(vehicle) + " is not registered";
   }
   *command_id = commands_.Open(command.kind, now_s, command.reason, {vehicle});
-  const CommandAccepted accepted{command.kind, vehicle, command.point, command.reason, *command_id};
+  const CommandAccepted accepted{
+      command.kind, vehicle, command.point, command.reason, *command_id, {}, 0, 0};
   Record(now_s, accepted);
   radio::Command order;
   order.type = RadioCommandOf(command.kind);
@@ -154,8 +242,9 @@ std::optional<std::string> Server::HandleInvestigation(const OperatorCommand& co
     if (!vehicle) return why_none;
   }
   *command_id = commands_.Open(command.kind, now_s, command.reason, {*vehicle});
-  Record(now_s, CommandAccepted{command.kind, command.vehicle, command.point, command.reason,
-                                *command_id});
+  Record(now_s,
+         CommandAccepted{
+             command.kind, command.vehicle, command.point, command.reason, *command_id, {}, 0, 0});
   commands_.Track(*command_id, *vehicle,
                   Investigate(*vehicle, command.point, command.radius_m, 0, now_s));
   return std::nullopt;

@@ -72,6 +72,8 @@ void Server::Replay(const JournalEntry& entry) {
             using Kind = OperatorCommand::Kind;
             // Its ID is taken; a journal from before IDs took the next one.
             commands_.Reserve(e.command_id > 0 ? e.command_id : commands_.next_id());
+            // Its nonce stays taken: a replay after the restart is refused as before.
+            if (!e.operator_id.empty()) verifier_.Remember(e.operator_id, e.nonce, e.utime);
             CallOff(e, t_s);
             if (e.command == Kind::kStart) {
               need_mission("start");
@@ -117,7 +119,9 @@ void Server::Replay(const JournalEntry& entry) {
                                        " has no sortie left to give");
             }
             mission_->Replace(e.taker, /*send=*/false);
-          }},
+          },
+          // A refused command changed nothing (the counters are this life's).
+          [](const CommandRefused&) {}},
       entry.event);
 }
 

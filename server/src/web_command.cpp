@@ -3,8 +3,10 @@
 
 #include <algorithm>
 #include <array>
+#include <climits>
 #include <cmath>
 #include <cstdint>
+#include <span>
 #include <string_view>
 
 namespace fireswarm::server {
@@ -114,8 +116,8 @@ const KindSpec* FindKind(const nlohmann::json& body, std::string* why) {
 }
 
 bool KnownKeys(const nlohmann::json& body, std::string* why) {
-  static constexpr std::array<std::string_view, 6> kKeys = {"kind", "vehicle",  "lat",
-                                                            "lon",  "radius_m", "reason"};
+  static constexpr std::array<std::string_view, 7> kKeys = {"kind",     "vehicle", "lat", "lon",
+                                                            "radius_m", "reason",  "auth"};
   for (const auto& [key, value] : body.items()) {
     if (std::find(kKeys.begin(), kKeys.end(), key) == kKeys.end()) {
       constexpr std::size_t kEchoBytes = 40;
@@ -125,7 +127,90 @@ bool KnownKeys(const nlohmann::json& body, std::string* why) {
   return true;
 }
 
+// `text`, an even number of hex digits, as bytes into `out` (out.size() * 2 digits).
+bool FromHex(const std::string& text, std::span<std::uint8_t> out) {
+  if (text.size() != 2 * out.size()) return false;
+  const auto digit = [](char c) -> int {
+    if (c >= '0' && c <= '9') return c - '0';
+    if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+    if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+    return -1;
+  };
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    const int high = digit(text[2 * i]);
+    const int low = digit(text[2 * i + 1]);
+    if (high < 0 || low < 0) return false;
+    out[i] = static_cast<std::uint8_t>(high * 16 + low);
+  }
+  return true;
+}
+
 }  // namespace
+
+std::optional<CommandCredentials> ParseWebCredentials(const nlohmann::json& body,
+                                                      std::string* why) {
+  const auto auth = body.is_object() ? body.find("auth") : body.end();
+  if (!body.is_object() || auth == body.end()) {
+    return Fail(why, "auth: required (the operator's signature: docs/command_center.md)"),
+           std::nullopt;
+  }
+  if (!auth->is_object()) return Fail(why, "auth: must be a JSON object"), std::nullopt;
+  for (const auto& [key, value] : auth->items()) {
+    if (key != "operator" && key != "utime" && key != "nonce" && key != "mac") {
+      constexpr std::size_t kEchoBytes = 40;
+      return Fail(why, "auth." + key.substr(0, kEchoBytes) + ": unknown field"), std::nullopt;
+    }
+  }
+  CommandCredentials credentials;
+  const auto op = auth->find("operator");
+  if (op == auth->end() || !op->is_string() ||
+      !IsValidOperatorId(op->get_ref<const std::string&>())) {
+    return Fail(why, "auth.operator: must be 1..64 of A-Z a-z 0-9 _ . -"), std::nullopt;
+  }
+  credentials.operator_id = op->get<std::string>();
+  const auto utime = auth->find("utime");
+  if (utime == auth->end() || !utime->is_number_integer() ||
+      (utime->is_number_unsigned() && utime->get<std::uint64_t>() > INT64_MAX)) {
+    return Fail(why, "auth.utime: must be an integer, microseconds"), std::nullopt;
+  }
+  credentials.utime = utime->get<std::int64_t>();
+  std::array<std::uint8_t, 8> nonce{};
+  const auto nonce_text = auth->find("nonce");
+  if (nonce_text == auth->end() || !nonce_text->is_string() ||
+      !FromHex(nonce_text->get_ref<const std::string&>(), nonce)) {
+    return Fail(why, "auth.nonce: must be 16 hex digits"), std::nullopt;
+  }
+  std::uint64_t nonce_bits = 0;
+  for (const std::uint8_t b : nonce) nonce_bits = (nonce_bits << 8) | b;
+  credentials.nonce = static_cast<std::int64_t>(nonce_bits);
+  const auto mac = auth->find("mac");
+  if (mac == auth->end() || !mac->is_string() ||
+      !FromHex(mac->get_ref<const std::string&>(), credentials.mac)) {
+    return Fail(why, "auth.mac: must be 64 hex digits"), std::nullopt;
+  }
+  return credentials;
+}
+
+nlohmann::json WebCredentialsJson(const CommandCredentials& credentials) {
+  static constexpr char kDigits[] = "0123456789abcdef";
+  const auto hex = [](std::span<const std::uint8_t> bytes) {
+    std::string text;
+    for (const std::uint8_t b : bytes) {
+      text += kDigits[b >> 4];
+      text += kDigits[b & 15];
+    }
+    return text;
+  };
+  std::array<std::uint8_t, 8> nonce{};
+  auto bits = static_cast<std::uint64_t>(credentials.nonce);
+  for (auto b = nonce.rbegin(); b != nonce.rend(); ++b, bits >>= 8) {
+    *b = static_cast<std::uint8_t>(bits);
+  }
+  return {{"operator", credentials.operator_id},
+          {"utime", credentials.utime},
+          {"nonce", hex(nonce)},
+          {"mac", hex(credentials.mac)}};
+}
 
 std::optional<OperatorCommand> ParseWebCommand(const nlohmann::json& body, std::string* why) {
   if (!body.is_object()) return Fail(why, "body: must be a JSON object"), std::nullopt;

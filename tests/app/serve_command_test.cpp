@@ -36,7 +36,11 @@
 #include "app/http_fetch.hpp"
 #include "app/run_fireswarm.hpp"
 #include "fireswarm/common/angles.hpp"
+#include "fireswarm/common/secret_key.hpp"
 #include "fireswarm/operator_command_t.hpp"
+#include "fireswarm/server/command_auth.hpp"
+#include "fireswarm/server/lcm_bridge.hpp"
+#include "fireswarm/server/web_command.hpp"
 
 namespace fireswarm::app {
 namespace {
@@ -317,40 +321,74 @@ TEST_F(ServeCommand, ServerKilledMidMissionResumesFromItsJournal) {
   EXPECT_EQ(sim.Finish(Clock::now() + kExitDeadline).exit_code, 0);
 }
 
+// The operator "ann" of a key store made for a test: the store's directory.
+std::string AnnsKeyStore(const std::string& dir, const common::SecretKey& key) {
+  std::filesystem::create_directories(dir + "/operators");
+  common::WriteSecretKeyFile(dir + "/operators/ann.key", key);
+  return dir;
+}
+
+std::int64_t UnixMicrosNow() {
+  return std::chrono::duration_cast<std::chrono::microseconds>(
+             std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+
 // Without --start the server waits for an operator's START on LCM (udpm:// on
-// loopback; skipped, saying why, on a machine without a multicast route).
+// loopback; skipped, saying why, on a machine without a multicast route). An
+// unsigned START is refused (and says why); a START signed with a key from
+// --keys starts the mission.
 TEST_F(ServeCommand, WaitsForAnOperatorStartOnLcm) {
   std::random_device random;
   const std::string url =
       "udpm://239.255.76.67:" + std::to_string(20'000 + random() % 40'000U) + "?ttl=0";
   lcm::LCM console(url);
   if (!console.good()) GTEST_SKIP() << "udpm:// needs a multicast route (scripts/install-deps.sh)";
+  const common::SecretKey key = common::GenerateSecretKey();
   PtyCable cable;
   FireswarmProcess sim(SimArgs(cable.fleet_end()));
   std::vector<std::string> serve_args = ServeArgs(cable.server_end());
   std::erase(serve_args, "--start");
-  serve_args.insert(serve_args.end(), {"--lcm", url});
+  serve_args.insert(serve_args.end(), {"--lcm", url, "--keys", AnnsKeyStore(PathOf("keys"), key)});
   FireswarmProcess serve(serve_args);
 
-  // START again until the server has taken one: it may not be listening yet.
-  fireswarm::operator_command_t start{};
-  start.command = fireswarm::operator_command_t::START;
-  start.reason = "operator console";
+  // Sends what `make` gives again until the server answers one: it may not be
+  // listening yet.
   const auto deadline = Clock::now() + kStartDeadline;
-  std::optional<Json> taken;
-  while (!taken && Clock::now() < deadline) {
-    ASSERT_EQ(console.publish("FIRESWARM_OPERATOR_COMMAND", &start), 0);
-    const auto retry_at = std::min(deadline, Clock::now() + std::chrono::milliseconds(200));
-    while (const std::optional<std::string> line = serve.ReadLine(retry_at)) {
-      Json j = Json::parse(*line, nullptr, false);
-      if (!j.is_discarded() && j.value("event", "") == "operator_command") {
-        taken = j;
-        break;
+  const auto send_until_answered = [&](const std::function<fireswarm::operator_command_t()>& make) {
+    std::optional<Json> taken;
+    while (!taken && Clock::now() < deadline) {
+      const fireswarm::operator_command_t start = make();
+      EXPECT_EQ(console.publish("FIRESWARM_OPERATOR_COMMAND", &start), 0);
+      const auto retry_at = std::min(deadline, Clock::now() + std::chrono::milliseconds(200));
+      while (const std::optional<std::string> line = serve.ReadLine(retry_at)) {
+        Json j = Json::parse(*line, nullptr, false);
+        if (!j.is_discarded() && j.value("event", "") == "operator_command") {
+          taken = j;
+          break;
+        }
       }
     }
-  }
-  ASSERT_TRUE(taken.has_value()) << "the server took no START";
-  EXPECT_EQ(taken->at("accepted"), true) << taken->dump();
+    return taken;
+  };
+  server::OperatorCommand start;
+  start.reason = "operator console";
+  const std::optional<Json> unsigned_start = send_until_answered([&] {
+    fireswarm::operator_command_t m = server::ToLcm(server::SignCommand(
+        start, "ann", common::GenerateSecretKey(), UnixMicrosNow(), server::RandomNonce()));
+    return m;
+  });
+  ASSERT_TRUE(unsigned_start.has_value()) << "the server answered no START";
+  EXPECT_EQ(unsigned_start->at("accepted"), false) << unsigned_start->dump();
+  EXPECT_TRUE(unsigned_start->at("why").get<std::string>().starts_with("bad_mac"))
+      << unsigned_start->dump();
+  const std::optional<Json> signed_start = send_until_answered([&] {
+    return server::ToLcm(
+        server::SignCommand(start, "ann", key, UnixMicrosNow(), server::RandomNonce()));
+  });
+  ASSERT_TRUE(signed_start.has_value()) << "the server took no signed START";
+  EXPECT_EQ(signed_start->at("accepted"), true) << signed_start->dump();
+  EXPECT_EQ(signed_start->at("operator"), "ann");
   const RunResult run = serve.Finish(Clock::now() + kMissionDeadline);
   ASSERT_EQ(run.exit_code, 0) << (run.lines.empty() ? "" : run.lines.back());
   ExpectAllDone(SummaryOf(run));
@@ -428,7 +466,9 @@ TEST_F(ServeCommand, TheCommandCenterShowsTheLinkAndStartsTheMission) {
   const std::string token = PathOf("token");
   std::ofstream(token) << "page-operator\n";
   ::chmod(token.c_str(), 0600);
-  serve_args.insert(serve_args.end(), {"--http", "127.0.0.1:0", "--operator-token-file", token});
+  const common::SecretKey key = common::GenerateSecretKey();
+  serve_args.insert(serve_args.end(), {"--http", "127.0.0.1:0", "--operator-token-file", token,
+                                       "--keys", AnnsKeyStore(PathOf("keys"), key)});
   FireswarmProcess serve(serve_args);
   const std::optional<std::uint16_t> port = serve.ReadListeningPort(Clock::now() + kStartDeadline);
   ASSERT_TRUE(port) << "no listening line";
@@ -447,8 +487,18 @@ TEST_F(ServeCommand, TheCommandCenterShowsTheLinkAndStartsTheMission) {
             http::status::unauthorized);
   ASSERT_TRUE(stream.ReadUntil([](const Json& state) { return state.value("refused", 0) == 1; }))
       << "the page counts the refusal";
-  const auto accepted =
+  // With the token but unsigned: refused (401) and journaled.
+  const auto unsigned_start =
       HttpFetch(*port, http::verb::post, "/api/command", R"({"kind":"start"})", "page-operator");
+  EXPECT_EQ(unsigned_start.result(), http::status::unauthorized) << unsigned_start.body();
+  EXPECT_NE(unsigned_start.body().find("auth: required"), std::string::npos)
+      << unsigned_start.body();
+  // Signed as the page signs (docs/command_center.md): the auth member.
+  const server::SignedCommand start = server::SignCommand(server::OperatorCommand{}, "ann", key,
+                                                          UnixMicrosNow(), server::RandomNonce());
+  const Json body = {{"kind", "start"}, {"auth", server::WebCredentialsJson(start.credentials)}};
+  const auto accepted =
+      HttpFetch(*port, http::verb::post, "/api/command", body.dump(), "page-operator");
   ASSERT_EQ(accepted.result(), http::status::accepted) << accepted.body();
   const std::string id = std::to_string(Json::parse(accepted.body()).at("id").get<int>());
   ASSERT_TRUE(stream.ReadUntil([&](const Json& state) {
@@ -464,6 +514,11 @@ TEST_F(ServeCommand, TheCommandCenterShowsTheLinkAndStartsTheMission) {
   const RunResult run = serve.Finish(Clock::now() + kMissionDeadline);
   ASSERT_EQ(run.exit_code, 0) << (run.lines.empty() ? "" : run.lines.back());
   ExpectAllDone(SummaryOf(run));
+  // The unsigned start was journaled (serve prints every journal entry as a line).
+  EXPECT_TRUE(std::any_of(run.lines.begin(), run.lines.end(), [](const std::string& line) {
+    return line.find(R"("event":"command_refused")") != std::string::npos &&
+           line.find("malformed: auth: required") != std::string::npos;
+  }));
   sim.Signal(SIGTERM);
   EXPECT_EQ(sim.Finish(Clock::now() + kExitDeadline).exit_code, 0);
 }
@@ -529,6 +584,8 @@ TEST_F(ServeCommand, BadFlagsExitTwoNamingTheFlag) {
            {"serve --drones 2 --start" + link, {"--area"}},
            {"serve --area " + area_ + " --drones 0 --start" + link, {"--drones"}},
            {"serve --area " + area_ + " --drones 2" + link, {"--start", "--lcm"}},
+           {"serve --area " + area_ + " --drones 2 --lcm memq://" + link, {"--keys"}},
+           {serve + " --keys " + PathOf("no-store") + link, {"--keys", "no-store/operators"}},
            {serve + " --first-id 254" + link, {"--first-id"}},
            {serve + " --mode token" + link, {"--mode"}},
            {serve + " --checksum sum" + link, {"--checksum"}},

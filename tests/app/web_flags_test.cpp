@@ -8,7 +8,9 @@
 #include <boost/beast/http.hpp>
 #include <boost/beast/websocket.hpp>
 #include <chrono>
+#include <cmath>
 #include <cstdint>
+#include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -17,6 +19,9 @@
 #include "app/fireswarm_process.hpp"
 #include "app/http_fetch.hpp"
 #include "app/run_fireswarm.hpp"
+#include "fireswarm/common/secret_key.hpp"
+#include "fireswarm/server/command_auth.hpp"
+#include "fireswarm/server/web_command.hpp"
 
 namespace fireswarm::app {
 namespace {
@@ -52,10 +57,13 @@ TEST_F(WebFlagsTest, RunServesThePageWhileItGoesAtThePaceAsked) {
   std::filesystem::create_directories(dir_ / "web");
   Write("web/index.html", "<title>command center</title>");
   const std::string token = Write("token", "  operator-token\n");
+  const common::SecretKey key = common::GenerateSecretKey();
+  std::filesystem::create_directories(dir_ / "keys" / "operators");
+  common::WriteSecretKeyFile(dir_ / "keys" / "operators" / "ann.key", key);
   constexpr double kPace = 10.0;
   FireswarmProcess run({"run", scenario, "--report", PathOf("r.json"), "--http", "127.0.0.1:0",
-                        "--web-root", PathOf("web"), "--operator-token-file", token, "--pace",
-                        std::to_string(kPace)});
+                        "--web-root", PathOf("web"), "--operator-token-file", token, "--keys",
+                        PathOf("keys"), "--pace", std::to_string(kPace)});
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
   const std::optional<std::uint16_t> port = run.ReadListeningPort(deadline);
   ASSERT_TRUE(port) << "no listening line";
@@ -92,9 +100,19 @@ TEST_F(WebFlagsTest, RunServesThePageWhileItGoesAtThePaceAsked) {
       HttpFetch(*port, http::verb::post, "/api/command", R"({"kind":"bogus"})", "operator-token");
   EXPECT_EQ(bogus.result(), http::status::bad_request);
   EXPECT_NE(bogus.body().find("kind"), std::string::npos) << bogus.body();
-  const auto again =
+  const auto unsigned_start =
       HttpFetch(*port, http::verb::post, "/api/command", R"({"kind":"start"})", "operator-token");
-  EXPECT_EQ(again.result(), http::status::conflict) << "the run started the mission already";
+  EXPECT_EQ(unsigned_start.result(), http::status::unauthorized) << unsigned_start.body();
+  // Signed on the run's clock (simulated us: the state's time_s), as the page does.
+  const std::int64_t utime = std::llround(state.at("time_s").get<double>() * 1e6);
+  const server::SignedCommand start =
+      server::SignCommand({}, "ann", key, utime, server::RandomNonce());
+  const nlohmann::json body = {{"kind", "start"},
+                               {"auth", server::WebCredentialsJson(start.credentials)}};
+  const auto again =
+      HttpFetch(*port, http::verb::post, "/api/command", body.dump(), "operator-token");
+  EXPECT_EQ(again.result(), http::status::conflict)
+      << "the run started the mission already: " << again.body();
   EXPECT_EQ(
       HttpFetch(*port, http::verb::post, "/api/command", R"({"kind":"start"})", "guess").result(),
       http::status::unauthorized);

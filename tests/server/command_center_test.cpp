@@ -238,6 +238,20 @@ TEST(CommandCenter, CommandStateIsFailedIfAnyFailedElseTheLeastAdvanced) {
   EXPECT_EQ(center.State()["commands"][0]["state"], "acknowledged");
 }
 
+// A refused command's status (ID 0, why in `refusal`: a replayed log's) is no
+// command to follow: it counts as refused.
+TEST(CommandCenter, ARefusedCommandsStatusCountsAsRefused) {
+  CommandCenter center({});
+  command_status_t status{};
+  status.command = operator_command_t::START;
+  status.operator_id = "mallory";
+  status.refusal = "bad_mac: the MAC does not match";
+  center.OnCommandStatus(status);
+  const nlohmann::json state = center.State();
+  EXPECT_EQ(state["refused"], 1);
+  EXPECT_TRUE(state["commands"].empty()) << state["commands"].dump();
+}
+
 TEST(CommandCenter, CommandsAreBoundedNewestKept) {
   CommandCenterConfig config;
   config.commands_kept = 2;

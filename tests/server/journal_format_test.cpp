@@ -66,6 +66,9 @@ TEST(JournalFormat, EveryEventComesBackAsItWasWritten) {
       {7.0, 9, InvestigationOpened{4, 2, 99.5, {30.0, -10.0}}},
       {8.0, 10, InvestigationNotSent{3, "no searching vehicle with a working link"}},
       {9.0, std::nullopt, DroneRecalled{5, "heard again"}},
+      {10.0, 11, CommandAccepted{OperatorCommand::Kind::kHold, 2, {}, "signed", 7, "ann", 123, -5}},
+      {11.0, 12,
+       CommandRefused{CommandVerdict::kStale, 6, 2, "ann", 1, -2, "stale: utime 1 is outside"}},
   };
   for (const JournalEntry& entry : entries) {
     const JournalEntry back = RoundTrip(entry);
@@ -85,6 +88,14 @@ TEST(JournalFormat, EveryEventComesBackAsItWasWritten) {
   const auto& handed = std::get<LanesHandedOver>(handed_back.event);
   EXPECT_EQ(handed.drones[0].waypoints, MissionOf(4, 2).waypoints);
   EXPECT_EQ(handed.straight_joins, 2);
+  const JournalEntry signed_entry = RoundTrip(entries[11]);
+  const auto& signed_back = std::get<CommandAccepted>(signed_entry.event);
+  EXPECT_EQ(signed_back.operator_id, "ann");
+  EXPECT_EQ(signed_back.nonce, -5);
+  const JournalEntry refused_entry = RoundTrip(entries[12]);
+  const auto& refused = std::get<CommandRefused>(refused_entry.event);
+  EXPECT_EQ(refused.verdict, CommandVerdict::kStale);
+  EXPECT_EQ(refused.why, "stale: utime 1 is outside");
 }
 
 TEST(JournalFormat, SortiesComeBackWithTheMissionAndEachPhase) {

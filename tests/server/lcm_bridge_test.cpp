@@ -7,6 +7,8 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
@@ -348,14 +350,126 @@ TEST(LcmBridge, PublishesAndTakesOperatorCommandsOverUdpm) {
   m.command = operator_command_t::RETURN_ALL;
   m.reason = "smoke on the ridge";
   if (operator_console.publish(kOperatorCommandChannel, &m) != 0) GTEST_SKIP() << kNoMulticastRoute;
-  std::vector<OperatorCommand> taken;
+  std::vector<IncomingCommand> taken;
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(3);
   while (taken.empty() && std::chrono::steady_clock::now() < deadline) {
-    for (OperatorCommand& c : bridge->TakeCommands()) taken.push_back(c);
+    for (IncomingCommand& c : bridge->TakeCommands()) taken.push_back(c);
   }
   ASSERT_EQ(taken.size(), 1u);
-  EXPECT_EQ(taken[0].kind, OperatorCommand::Kind::kReturnAll);
-  EXPECT_EQ(taken[0].reason, "smoke on the ridge");
+  const auto& command = std::get<SignedCommand>(taken[0]);
+  EXPECT_EQ(command.command.kind, OperatorCommand::Kind::kReturnAll);
+  EXPECT_EQ(command.command.reason, "smoke on the ridge");
+}
+
+// Issue 17 over udpm:// on loopback: a signed START is taken, the same message
+// sent again (a replay) and an unsigned one are refused, each refusal answered
+// on FIRESWARM_COMMAND_STATUS with why, and counted in radio_stats_t.
+struct SignedInbox {
+  void OnStatus(const lcm::ReceiveBuffer*, const std::string&, const command_status_t* m) {
+    statuses.push_back(*m);
+  }
+  void OnStats(const lcm::ReceiveBuffer*, const std::string&, const radio_stats_t* m) {
+    stats.push_back(*m);
+  }
+  std::vector<command_status_t> statuses;
+  std::vector<radio_stats_t> stats;
+};
+
+TEST(LcmBridge, RefusesUnsignedAndReplayedCommandsOverUdpm) {
+  common::SecretKey key{};
+  key.fill(7);
+  ServerConfig server_config;
+  server_config.operators = {{"ann", key}};
+  Server server(server_config, kFrame);
+  server.AddVehicle(1);
+  server.LoadMission(testing::Missions({1}));
+  LcmBridgeConfig config;
+  config.url = LoopbackUrl();
+  lcm::LCM console(config.url);
+  if (!console.good()) GTEST_SKIP() << kNoMulticastRoute;
+  std::unique_ptr<LcmBridge> bridge;
+  try {
+    bridge = std::make_unique<LcmBridge>(config);
+  } catch (const std::runtime_error&) {
+    GTEST_SKIP() << kNoMulticastRoute;
+  }
+  SignedInbox inbox;
+  console.subscribe(kCommandStatusChannel, &SignedInbox::OnStatus, &inbox);
+  console.subscribe(kRadioStatsChannel, &SignedInbox::OnStats, &inbox);
+
+  constexpr std::int64_t kUtime = 1'764'000'000'000'000;
+  OperatorCommand start;
+  start.reason = "console";
+  const operator_command_t signed_start = ToLcm(SignCommand(start, "ann", key, kUtime, 11));
+  operator_command_t unsigned_start = signed_start;
+  unsigned_start.nonce = 12;
+  std::fill(std::begin(unsigned_start.mac), std::end(unsigned_start.mac), 0);
+  // Handed to the server in the order sent: signed, replayed, unsigned.
+  std::vector<std::pair<bool, std::string>> outcomes;
+  const std::array<const operator_command_t*, 3> sent = {&signed_start, &signed_start,
+                                                         &unsigned_start};
+  for (const operator_command_t* m : sent) {
+    if (console.publish(kOperatorCommandChannel, m) != 0) GTEST_SKIP() << kNoMulticastRoute;
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(3);
+    std::vector<IncomingCommand> taken;
+    while (taken.empty() && std::chrono::steady_clock::now() < deadline) {
+      taken = bridge->TakeCommands();
+    }
+    ASSERT_EQ(taken.size(), 1u) << "command " << outcomes.size() << " did not arrive within 3 s";
+    std::string why;
+    const bool accepted =
+        server.HandleSigned(std::get<SignedCommand>(taken[0]), Nanos{0}, kUtime, &why);
+    outcomes.emplace_back(accepted, why);
+  }
+  EXPECT_TRUE(outcomes[0].first) << outcomes[0].second;
+  EXPECT_FALSE(outcomes[1].first);
+  EXPECT_TRUE(outcomes[1].second.starts_with("replayed")) << outcomes[1].second;
+  EXPECT_FALSE(outcomes[2].first);
+  EXPECT_TRUE(outcomes[2].second.starts_with("bad_mac")) << outcomes[2].second;
+  EXPECT_EQ(server.state(), MissionState::kUploading) << "started once";
+
+  bridge->Publish(server, 0.0, kUtime, kUtime);
+  ASSERT_TRUE(
+      HandleUntil(console, [&] { return inbox.statuses.size() >= 3 && !inbox.stats.empty(); }))
+      << inbox.statuses.size() << " statuses";
+  EXPECT_EQ(inbox.statuses[0].command_id, 1);
+  EXPECT_EQ(inbox.statuses[0].operator_id, "ann");
+  EXPECT_EQ(inbox.statuses[0].nonce, 11);
+  EXPECT_EQ(inbox.statuses[1].command_id, 0);
+  EXPECT_EQ(inbox.statuses[1].nonce, 11);
+  EXPECT_TRUE(inbox.statuses[1].refusal.starts_with("replayed")) << inbox.statuses[1].refusal;
+  EXPECT_EQ(inbox.statuses[2].nonce, 12);
+  EXPECT_TRUE(inbox.statuses[2].refusal.starts_with("bad_mac")) << inbox.statuses[2].refusal;
+  EXPECT_EQ(inbox.stats[0].commands_replayed, 1);
+  EXPECT_EQ(inbox.stats[0].commands_bad_mac, 1);
+  EXPECT_EQ(inbox.stats[0].commands_stale, 0);
+}
+
+// A malformed command comes out as a refusal the server journals.
+TEST(LcmBridge, AMalformedCommandComesOutAsARefusal) {
+  LcmBridgeConfig config;
+  config.url = "memq://";
+  LcmBridge bridge(config);
+  operator_command_t m{};
+  m.command = 99;
+  m.operator_id = "mallory";
+  m.nonce = 5;
+  bridge.lcm()->publish(kOperatorCommandChannel, &m);
+  const std::vector<IncomingCommand> taken = bridge.TakeCommands();
+  ASSERT_EQ(taken.size(), 1u);
+  const auto& refusal = std::get<CommandRefused>(taken[0]);
+  EXPECT_EQ(refusal.verdict, CommandVerdict::kMalformed);
+  EXPECT_EQ(refusal.operator_id, "mallory");
+  EXPECT_EQ(refusal.command, 99);
+  EXPECT_NE(refusal.why.find("unknown command 99"), std::string::npos) << refusal.why;
+  EXPECT_EQ(bridge.rejected_commands(), 1u);
+}
+
+// The URL the docs and the flags' help give keeps multicast on this host.
+TEST(LcmBridge, TheDefaultUrlIsHostLocal) {
+  const std::string url = kDefaultLcmUrl;
+  EXPECT_TRUE(url.starts_with("udpm://")) << url;
+  EXPECT_TRUE(url.ends_with("?ttl=0")) << url;
 }
 
 TEST(LcmBridge, TheStockLogPlayerReplaysTheLog) {

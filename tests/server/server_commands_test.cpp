@@ -243,5 +243,113 @@ TEST(Server, ARestoredServerGivesNoCommandIdTwice) {
   EXPECT_EQ(id, 5);
 }
 
+// ---- Signed commands (command_auth.hpp) -------------------------------------
+
+constexpr std::int64_t kUtimeNow = 1'764'000'000'000'000;  // the LCM clock, us
+
+common::SecretKey AnnsKey() {
+  common::SecretKey key{};
+  key.fill(0xA5);
+  return key;
+}
+
+ServerConfig WithAnn() {
+  ServerConfig config;
+  config.operators = {{"ann", AnnsKey()}};
+  return config;
+}
+
+OperatorCommand HoldOne() {
+  return {Kind::kHold, 1, {}, 0.0, "signed hold"};
+}
+
+template <typename Event>
+std::vector<Event> EventsOf(const std::vector<JournalEntry>& entries) {
+  std::vector<Event> events;
+  for (const JournalEntry& entry : entries) {
+    if (const auto* event = std::get_if<Event>(&entry.event)) events.push_back(*event);
+  }
+  return events;
+}
+
+TEST(Server, TakesASignedCommandAndNamesItsOperator) {
+  Fleet fleet(WithAnn());
+  fleet.server.TakeJournalEntries();
+  std::int32_t id = 0;
+  CommandVerdict verdict = CommandVerdict::kMalformed;
+  std::string why;
+  ASSERT_TRUE(fleet.server.HandleSigned(SignCommand(HoldOne(), "ann", AnnsKey(), kUtimeNow, 9),
+                                        Now(fleet), kUtimeNow + 500'000, &why, &id, &verdict))
+      << why;
+  EXPECT_EQ(verdict, CommandVerdict::kAccepted);
+  EXPECT_EQ(RecordOf(fleet.server, id).operator_id, "ann");
+  EXPECT_EQ(RecordOf(fleet.server, id).nonce, 9);
+  const auto accepted = EventsOf<CommandAccepted>(fleet.server.TakeJournalEntries());
+  ASSERT_EQ(accepted.size(), 1u);
+  EXPECT_EQ(accepted[0].operator_id, "ann");
+  EXPECT_EQ(accepted[0].utime, kUtimeNow);
+  EXPECT_EQ(accepted[0].nonce, 9);
+  WatchUntilFinished(fleet.air, fleet.server, id);
+  EXPECT_NE(LastOf(fleet.air.vehicle(1), radio::CommandType::kHold), nullptr);
+}
+
+TEST(Server, RefusesForgedStaleReplayedAndUnknownCommandsJournalingAndCountingEach) {
+  Fleet fleet(WithAnn());
+  fleet.server.TakeJournalEntries();
+  const std::size_t records = fleet.server.commands().size();
+  const SignedCommand good = SignCommand(HoldOne(), "ann", AnnsKey(), kUtimeNow, 1);
+  ASSERT_TRUE(fleet.server.HandleSigned(good, Now(fleet), kUtimeNow));
+  SignedCommand unsigned_hold{HoldOne(), {"ann", kUtimeNow, 2, {}}};
+  common::SecretKey bobs_key = AnnsKey();
+  bobs_key[0] ^= 1;
+  const std::vector<std::pair<SignedCommand, CommandVerdict>> refused = {
+      {unsigned_hold, CommandVerdict::kBadMac},
+      {SignCommand(HoldOne(), "bob", bobs_key, kUtimeNow, 3), CommandVerdict::kUnknownOperator},
+      {SignCommand(HoldOne(), "ann", AnnsKey(), kUtimeNow - 31'000'000, 4), CommandVerdict::kStale},
+      {good, CommandVerdict::kReplayed},
+  };
+  for (const auto& [command, expected] : refused) {
+    std::string why;
+    CommandVerdict verdict = CommandVerdict::kAccepted;
+    EXPECT_FALSE(
+        fleet.server.HandleSigned(command, Now(fleet), kUtimeNow, &why, nullptr, &verdict));
+    EXPECT_EQ(verdict, expected);
+    EXPECT_TRUE(why.starts_with(ToString(expected))) << why;
+  }
+  EXPECT_EQ(fleet.server.commands().size(), records + 1) << "only the good one has a record";
+  const auto& counts = fleet.server.command_refusals();
+  for (const CommandVerdict v : {CommandVerdict::kBadMac, CommandVerdict::kUnknownOperator,
+                                 CommandVerdict::kStale, CommandVerdict::kReplayed}) {
+    EXPECT_EQ(counts.at(static_cast<std::size_t>(v)), 1u) << ToString(v);
+  }
+  EXPECT_EQ(fleet.server.refusal_count(), 4u);
+  ASSERT_EQ(fleet.server.recent_refusals().size(), 4u);
+  const auto journaled = EventsOf<CommandRefused>(fleet.server.TakeJournalEntries());
+  ASSERT_EQ(journaled.size(), 4u);
+  EXPECT_EQ(journaled[1].operator_id, "bob") << "who it claimed to come from";
+  EXPECT_EQ(journaled[1].command, static_cast<int>(Kind::kHold));
+  EXPECT_EQ(journaled[1].vehicle, 1);
+  EXPECT_NE(journaled[2].why.find("window"), std::string::npos) << journaled[2].why;
+}
+
+TEST(Server, WithoutOperatorKeysEverySignedCommandIsRefused) {
+  Fleet fleet;
+  std::string why;
+  EXPECT_FALSE(fleet.server.HandleSigned(SignCommand(HoldOne(), "ann", AnnsKey(), kUtimeNow, 1),
+                                         Now(fleet), kUtimeNow, &why));
+  EXPECT_NE(why.find("no operator keys"), std::string::npos) << why;
+}
+
+TEST(Server, ARestoredServerStillRefusesAReplayedCommand) {
+  Fleet fleet(WithAnn());
+  const SignedCommand hold = SignCommand(HoldOne(), "ann", AnnsKey(), kUtimeNow, 77);
+  ASSERT_TRUE(fleet.server.HandleSigned(hold, Now(fleet), kUtimeNow));
+  Server restored = Server::Restore(WithAnn(), kFrame, fleet.server.TakeJournalEntries());
+  CommandVerdict verdict = CommandVerdict::kAccepted;
+  EXPECT_FALSE(
+      restored.HandleSigned(hold, Now(fleet), kUtimeNow + 1'000'000, nullptr, nullptr, &verdict));
+  EXPECT_EQ(verdict, CommandVerdict::kReplayed);
+}
+
 }  // namespace
 }  // namespace fireswarm::server

@@ -102,5 +102,41 @@ TEST(ParseWebCommand, EveryErrorNamesTheField) {
   EXPECT_TRUE(ParseWebCommand({{"kind", "abort"}, {"reason", std::string(200, 'r')}}, nullptr));
 }
 
+TEST(ParseWebCredentials, ReadsWhatWebCredentialsJsonWrites) {
+  CommandCredentials credentials{"ann.b-2", 1'764'000'000'123'456, -3, {}};
+  for (std::size_t i = 0; i < credentials.mac.size(); ++i) {
+    credentials.mac[i] = static_cast<std::uint8_t>(i * 7);
+  }
+  const nlohmann::json auth = WebCredentialsJson(credentials);
+  EXPECT_EQ(auth.at("nonce"), "fffffffffffffffd") << "64 bits, big-endian";
+  std::string why;
+  const auto back = ParseWebCredentials({{"kind", "abort"}, {"auth", auth}}, &why);
+  ASSERT_TRUE(back) << why;
+  EXPECT_EQ(back->operator_id, credentials.operator_id);
+  EXPECT_EQ(back->utime, credentials.utime);
+  EXPECT_EQ(back->nonce, credentials.nonce);
+  EXPECT_EQ(back->mac, credentials.mac);
+  EXPECT_TRUE(ParseWebCommand({{"kind", "abort"}, {"auth", auth}}, &why)) << why;
+}
+
+TEST(ParseWebCredentials, NamesTheFieldThatIsWrong) {
+  const nlohmann::json good = WebCredentialsJson({"ann", 5, 6, {}});
+  const auto why = [&](const std::string& key, const nlohmann::json& value) {
+    nlohmann::json auth = good;
+    auth[key] = value;
+    std::string text;
+    EXPECT_FALSE(ParseWebCredentials({{"kind", "abort"}, {"auth", auth}}, &text)) << key;
+    return text;
+  };
+  std::string text;
+  EXPECT_FALSE(ParseWebCredentials({{"kind", "abort"}}, &text));
+  EXPECT_TRUE(text.starts_with("auth: required")) << text;
+  EXPECT_EQ(why("operator", "../etc"), "auth.operator: must be 1..64 of A-Z a-z 0-9 _ . -");
+  EXPECT_EQ(why("utime", 1.5), "auth.utime: must be an integer, microseconds");
+  EXPECT_EQ(why("nonce", "12"), "auth.nonce: must be 16 hex digits");
+  EXPECT_EQ(why("mac", std::string(64, 'g')), "auth.mac: must be 64 hex digits");
+  EXPECT_EQ(why("key", "secret"), "auth.key: unknown field");
+}
+
 }  // namespace
 }  // namespace fireswarm::server

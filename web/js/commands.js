@@ -1,13 +1,18 @@
 // Operator commands: per drone (hold, resume, return, land, re-task to a point
 // clicked on the map), investigate a clicked point, and the fleet's (start, hold
 // all, resume all, return all). Each asks for confirmation listing every target
-// by receiver ID and colour, then POSTs /api/command with the operator token
-// (kept in sessionStorage) and follows the command's state (queued, sent,
+// by receiver ID and colour, then POSTs /api/command with the operator token,
+// signed with the operator's key (command_auth.js: HMAC-SHA256 over the command,
+// the server's clock and a nonce; name, key and token are kept in sessionStorage
+// and the key is never sent), and follows the command's state (queued, sent,
 // acknowledged, failed) in the state's `commands`; a refusal shows its error.
 // Targets are receiver IDs taken when the dialog opens, never rows or indices.
+import { credentialsProblem, signCommand } from './command_auth.js';
 import { clock, droneLabel, swatch } from './format.js';
 
 const TOKEN_KEY = 'fireswarm.operatorToken';
+const OPERATOR_KEY = 'fireswarm.operatorId';
+const SECRET_KEY = 'fireswarm.operatorKey';
 
 const TITLES = {
   hold: 'Hold', resume: 'Resume', return: 'Return to launch', land: 'Land', retask: 'Re-task',
@@ -56,9 +61,24 @@ export class Commands {
   }
 
   setUpToken_() {
-    const input = document.getElementById('token');
-    input.value = sessionStorage.getItem(TOKEN_KEY) || '';
-    input.addEventListener('input', () => sessionStorage.setItem(TOKEN_KEY, input.value));
+    for (const [id, key] of [['token', TOKEN_KEY], ['operator-id', OPERATOR_KEY], ['operator-key', SECRET_KEY]]) {
+      const input = document.getElementById(id);
+      input.value = sessionStorage.getItem(key) || '';
+      input.addEventListener('input', () => sessionStorage.setItem(key, input.value.trim()));
+    }
+  }
+
+  /**
+   * `body` signed with the operator's name and key from the header, at the
+   * server's clock (the latest state's time; docs/lcm.md: the window is on it);
+   * unsigned (the server refuses it and says why) without them.
+   */
+  async sign_(body) {
+    const operator = document.getElementById('operator-id').value.trim();
+    const key = document.getElementById('operator-key').value.trim();
+    if (credentialsProblem(operator, key)) return body;
+    const utime = this.store_.timeS ? this.store_.timeS * 1e6 : Date.now() * 1000;
+    return signCommand(body, operator, key, utime);
   }
 
   drone_(kind) {
@@ -123,7 +143,8 @@ export class Commands {
     if (token) headers.Authorization = `Bearer ${token}`;
     let error = '';
     try {
-      const reply = await fetch('/api/command', { method: 'POST', headers, body: JSON.stringify(body) });
+      const signed = await this.sign_(body);
+      const reply = await fetch('/api/command', { method: 'POST', headers, body: JSON.stringify(signed) });
       const answer = await reply.json().catch(() => ({}));
       if (reply.status !== 202) error = `${reply.status}: ${answer.error || reply.statusText}`;
     } catch (e) {

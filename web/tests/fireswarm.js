@@ -1,8 +1,10 @@
 // Starts a real `fireswarm run SCENARIO --http 127.0.0.1:0 --pace K
-// --operator-token-file F --report R` for the browser tests and tells its URL
+// --operator-token-file F --keys DIR --report R` for the browser tests (DIR a
+// key store with one operator, `ann`) and tells its URL
 // (the `http: listening on http://HOST:PORT/` line it prints). The binary is
 // $FIRESWARM, or ../build/bin/fireswarm from web/.
 import { spawn } from 'node:child_process';
+import crypto from 'node:crypto';
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
@@ -72,20 +74,26 @@ export async function startProcess(args, { cwd = os.tmpdir() } = {}) {
 
 /**
  * Starts the mission: `fireswarm run SCENARIO --http 127.0.0.1:0 --pace K
- * --operator-token-file F --report R` in a temporary directory. Resolves to
- * {url, token, report, dir, exited, output(), stop()} once it listens.
+ * --operator-token-file F --keys DIR --report R` in a temporary directory.
+ * Resolves to {url, token, operator, key, report, dir, exited, output(), stop()}
+ * once it listens; `key` is the operator's key as hex (its .key file's line).
  */
 export async function startRun({ scenario = SCENARIO, pace = Number(process.env.FIRESWARM_PACE || 10), token = 'test-operator-token' } = {}) {
   const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'fireswarm-web-'));
+  const operator = 'ann';
+  const key = crypto.randomBytes(32).toString('hex');
+  const keys = path.join(dir, 'keys');
+  fs.mkdirSync(path.join(keys, 'operators'), { recursive: true, mode: 0o700 });
+  fs.writeFileSync(path.join(keys, 'operators', `${operator}.key`), `${key}\n`, { mode: 0o600 });
   const scenarioFile = path.join(dir, 'scenario.yaml');
   fs.writeFileSync(scenarioFile, scenario);
   const tokenFile = path.join(dir, 'operator.token');
   fs.writeFileSync(tokenFile, `${token}\n`, { mode: 0o600 });
   const report = path.join(dir, 'report.json');
   const process_ = await startProcess(['run', scenarioFile, '--http', '127.0.0.1:0', '--pace', String(pace),
-    '--operator-token-file', tokenFile, '--report', report], { cwd: dir });
+    '--operator-token-file', tokenFile, '--keys', keys, '--report', report], { cwd: dir });
   return {
-    ...process_, token, report, dir,
+    ...process_, token, operator, key, report, dir,
     async stop() {
       await process_.stop();
       fs.rmSync(dir, { recursive: true, force: true });

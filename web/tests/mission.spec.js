@@ -1,8 +1,10 @@
 // The command center against a real simulated mission (`fireswarm run --http
 // --pace`): the fleet fills the table, the drones move, a fire track appears with
-// its ellipse and is confirmed, a command without the token is refused, and a
-// confirmed "return all", seen by a second browser, brings the drones home (the
-// run's own report says so). No request may leave 127.0.0.1.
+// its ellipse and is confirmed, a command without the token is refused, a signed
+// command altered on its way is refused (its MAC no longer matches), and a
+// confirmed "return all", signed by the page with the operator's key, seen by a
+// second browser, brings the drones home (the run's own report says so). No
+// request may leave 127.0.0.1.
 import fs from 'node:fs';
 import path from 'node:path';
 import { test, expect } from '@playwright/test';
@@ -109,12 +111,49 @@ test('a command without the operator token is refused and the error shown', asyn
   await context.close();
 });
 
+test('a signed command altered on its way is refused, and the key never leaves the page', async () => {
+  const { page } = operator;
+  await page.locator('#token').fill(run.token);
+  await page.locator('#operator-id').fill(run.operator);
+  await page.locator('#operator-key').fill(run.key);
+  // Kept for the tab only.
+  expect(await page.evaluate(() => sessionStorage.getItem('fireswarm.operatorKey'))).toBe(run.key);
+  // A man in the middle sends the signed hold for drone 2 to drone 3 instead.
+  const sent = [];
+  await page.route('**/api/command', (route) => {
+    sent.push(JSON.parse(route.request().postData()));
+    const body = JSON.parse(route.request().postData());
+    body.vehicle = 3;
+    return route.continue({ postData: JSON.stringify(body) });
+  });
+  await page.locator('#fleet tr[data-vehicle="2"]').click();
+  await page.locator('button[data-drone="hold"]').click();
+  const dialog = page.locator('dialog#confirm');
+  await expect(dialog).toBeVisible();
+  const reply = page.waitForResponse('**/api/command');
+  await dialog.locator('#confirm-ok').click();
+  const answer = await reply;
+  expect(answer.status()).toBe(401);
+  expect((await answer.json()).error).toMatch(/^bad_mac/);
+  await expect(page.locator('#command-error')).toContainText('bad_mac');
+  await page.unroute('**/api/command');
+  // What the page sent: the command, its operator, utime, nonce and MAC; no key.
+  expect(sent).toHaveLength(1);
+  expect(sent[0].vehicle).toBe(2);
+  expect(sent[0].auth.operator).toBe(run.operator);
+  expect(sent[0].auth.mac).toMatch(/^[0-9a-f]{64}$/);
+  expect(sent[0].auth.nonce).toMatch(/^[0-9a-f]{16}$/);
+  expect(JSON.stringify(sent[0])).not.toContain(run.key);
+});
+
 test('return all, confirmed, is seen by a second browser and brings the drones home', async ({ browser }) => {
   const { page } = operator;
   const watcher = await openPage(browser, run.url);
   await expect(watcher.page.locator('#fleet tbody tr')).toHaveCount(DRONES.length);
 
   await page.locator('#token').fill(run.token);
+  await page.locator('#operator-id').fill(run.operator);
+  await page.locator('#operator-key').fill(run.key);
   await page.locator('button[data-fleet="return_all"]').click();
   const dialog = page.locator('dialog#confirm');
   await expect(dialog).toBeVisible();

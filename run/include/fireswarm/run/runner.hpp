@@ -35,7 +35,8 @@ struct RunOptions {
   double progress_interval_s = 5.0;
   /// Called after every lockstep step with the simulated time reached, s, and the
   /// server as it stands then (what an adapter publishes, e.g. on LCM); empty: none.
-  /// It may hand the server operator commands (Server::Handle at t_s), which then
+  /// It may hand the server operator commands (Server::HandleSigned at t_s, its
+  /// LCM clock simulated microseconds since the start), which then
   /// take effect from the next step on, as a command arriving then would.
   /// An exception it throws ends the run and leaves RunScenario.
   std::function<void(double t_s, server::Server& server)> on_step;
@@ -48,6 +49,10 @@ struct RunOptions {
   /// After the mission is complete, the run goes on at most this long for fire
   /// reports still queued on the vehicles to reach the server, s.
   double drain_s = 30.0;
+  /// Operator ID -> key: whose signed commands the server takes (on_step's, e.g.
+  /// the page's through `run --keys`). The runner signs the mission's start
+  /// itself, as operator "runner" with a key it makes for the run.
+  std::map<std::string, common::SecretKey> operators;
 };
 
 /// Why the run stopped.

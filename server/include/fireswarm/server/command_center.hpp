@@ -64,6 +64,8 @@ class CommandCenter {
   void OnFireTracks(const fire_track_list_t& message);
   void OnMissionStatus(const mission_status_t& message);
   void OnRadioStats(const radio_stats_t& message);
+  /// A command's status; a refused one's (command_id 0, `refusal` given) counts
+  /// as NoteRefused.
   void OnCommandStatus(const command_status_t& message);
   /// Counts a command the web adapter refused (the state's `refused`).
   void NoteRefused();

@@ -48,6 +48,8 @@ struct CommandRecord {
   double issued_s = 0.0;               ///< mission time the server accepted it, s
   std::string reason;                  ///< the operator's free text
   std::vector<CommandTarget> targets;  ///< ascending receiver ID
+  std::string operator_id;             ///< who signed it; empty: the server's own order
+  std::int64_t nonce = 0;              ///< the signed command's nonce
   std::uint64_t version = 0;           ///< CommandLog::version() when it last changed
 
   /// The command as a whole: acknowledged when every target is (or it has none),
@@ -72,6 +74,9 @@ class CommandLog {
   /// ignored.
   void Advance(std::int32_t command_id, std::uint8_t vehicle, TargetState state,
                std::string detail = {});
+  /// Command `command_id` was signed by `operator_id` with `nonce` (unknown IDs
+  /// are ignored).
+  void Attribute(std::int32_t command_id, std::string operator_id, std::int64_t nonce);
   /// IDs up to `id` are taken (a restored journal's commands): the next is above.
   void Reserve(std::int32_t id);
 

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "fireswarm/common/local_frame.hpp"
+#include "fireswarm/server/command_auth.hpp"
 #include "fireswarm/server/fire_fusion.hpp"
 #include "fireswarm/server/mission_manager.hpp"
 #include "fireswarm/server/mission_state.hpp"
@@ -42,6 +43,25 @@ struct CommandAccepted {
   /// The command's ID (command_status.hpp); 0: not known (journals written before
   /// commands had IDs).
   std::int32_t command_id = 0;
+  /// Who signed it, when (their utime) and with which nonce; operator_id empty:
+  /// the server's own (Server::Handle) or a journal from before signed commands.
+  /// A restored server remembers the nonce, so a replay stays refused.
+  std::string operator_id{};
+  std::int64_t utime = 0;
+  std::int64_t nonce = 0;
+};
+
+/// An operator command refused unread or unauthenticated (command_auth.hpp's
+/// verdicts): what it asked, who it claimed to come from, and why. Nothing to
+/// rebuild; kept for the operator and the record.
+struct CommandRefused {
+  CommandVerdict verdict = CommandVerdict::kMalformed;
+  int command = 0;          ///< the command constant it carried (as given, for a malformed one)
+  int vehicle = 0;          ///< its target_vehicle (as given)
+  std::string operator_id;  ///< as claimed (cut to kMaxOperatorIdBytes)
+  std::int64_t utime = 0;   ///< as claimed
+  std::int64_t nonce = 0;   ///< as claimed
+  std::string why;          ///< "stale: ...", "bad_mac: ..."
 };
 
 /// A drone's phase changed (a new sortie starts with kUploading).
@@ -110,7 +130,7 @@ struct DroneRecalled {
 using JournalEvent =
     std::variant<VehicleAdded, MissionLoaded, CommandAccepted, PhaseChanged, LanesHandedOver,
                  MissionStateChanged, ReportFused, TrackRejected, InvestigationOpened,
-                 InvestigationNotSent, DroneRecalled, SortieMoved>;
+                 InvestigationNotSent, DroneRecalled, SortieMoved, CommandRefused>;
 
 /// One thing that must survive a restart, in the order it happened.
 struct JournalEntry {

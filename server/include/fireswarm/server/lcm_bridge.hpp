@@ -20,6 +20,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "fireswarm/command_status_t.hpp"
@@ -38,6 +39,10 @@ struct ReceiveBuffer;
 }  // namespace lcm
 
 namespace fireswarm::server {
+
+/// The LCM URL the examples and the docs give: host-local (ttl=0: multicast
+/// never leaves this machine). Operator commands are signed either way.
+inline constexpr const char* kDefaultLcmUrl = "udpm://239.255.76.67:7667?ttl=0";
 
 /// Channel names.
 inline constexpr const char* kVehicleStateChannel = "FIRESWARM_VEHICLE_STATE";
@@ -92,9 +97,20 @@ radio_stats_t ToRadioStats(const Server& server, double now_s, std::int64_t utim
 /// converted with utime = `utime_at_zero` + seconds * 1e6.
 command_status_t ToCommandStatus(const CommandRecord& record, std::int64_t utime,
                                  std::int64_t utime_at_zero);
+/// A refused command's status: command_id 0, no targets, `refusal` = its why.
+command_status_t ToCommandStatus(const CommandRefused& refusal, std::int64_t utime);
 /// An operator's command as the server takes it; nullopt (with the reason in
 /// `why`) when the command constant is unknown or a field is out of range.
+/// Lossless for the commands it takes (MAC input: command_auth.hpp).
 std::optional<OperatorCommand> FromLcm(const operator_command_t& message, std::string* why);
+/// The message's credentials: operator_id, utime, nonce, mac.
+CommandCredentials CredentialsFromLcm(const operator_command_t& message);
+/// A signed command as an operator's tool publishes it.
+operator_command_t ToLcm(const SignedCommand& command);
+
+/// What the bridge takes from LCM: a command to verify and carry out, or one it
+/// could not read (a kMalformed refusal for Server::Refuse).
+using IncomingCommand = std::variant<SignedCommand, CommandRefused>;
 
 // ---- The adapter (lcm_bridge.cpp) --------------------------------------------
 
@@ -118,11 +134,13 @@ class LcmBridge {
 
   /// Publishes (and logs, and writes to CSV) every message type whose period has
   /// come round at `now_s` (mission seconds), and a command_status_t for every
-  /// command accepted or changed since the last call; `utime` stamps them.
+  /// command accepted or changed, and every refusal, since the last call;
+  /// `utime` stamps them.
   void Publish(const Server& server, double now_s, std::int64_t utime, std::int64_t utime_at_zero);
   /// Operator commands received since the last call (handles pending LCM
-  /// traffic without blocking). Malformed ones are dropped and counted.
-  std::vector<OperatorCommand> TakeCommands();
+  /// traffic without blocking), for Server::HandleSigned; malformed ones come as
+  /// refusals (for Server::Refuse) and are counted in rejected_commands().
+  std::vector<IncomingCommand> TakeCommands();
   /// When Publish next has something to publish, mission seconds.
   double NextPublishS() const;
 
@@ -146,8 +164,9 @@ class LcmBridge {
   std::map<std::string, double> next_s_;  // per channel
   RadioCounters previous_counters_;
   double previous_radio_stats_s_ = 0.0;
-  std::vector<OperatorCommand> commands_;
-  std::uint64_t commands_version_ = 0;  // Server::commands_version() last published
+  std::vector<IncomingCommand> commands_;
+  std::uint64_t commands_version_ = 0;    // Server::commands_version() last published
+  std::uint64_t refusals_published_ = 0;  // Server::refusal_count() last published
   std::uint64_t published_ = 0;
   std::uint64_t rejected_commands_ = 0;
 };

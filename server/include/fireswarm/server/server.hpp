@@ -32,12 +32,21 @@
 // they stay sent. Other targets follow the radio request carrying the command.
 // Restored servers keep counting IDs after the journal's last one.
 //
+// Authenticated commands (command_auth.hpp): commands from outside the process
+// (LCM, the page) come in through HandleSigned, which checks the operator's MAC,
+// the window and the nonce before Handle; a refusal is journaled
+// (CommandRefused), counted per verdict and kept for the adapters to answer. A
+// restored server remembers the nonces its journal's signed commands used.
+// Handle itself is for the process's own orders (`serve --start`).
+//
 // No-fly zones (ServerConfig::no_fly): the legs the server makes up keep out of
 // them as the planner's do. A taker's joins to the lanes it is handed go around
 // them (planner::TransitPlanner), and investigations keep out of them too.
 #pragma once
 
+#include <array>
 #include <cstdint>
+#include <deque>
 #include <limits>
 #include <map>
 #include <memory>
@@ -53,6 +62,7 @@
 #include "fireswarm/planner/geometry.hpp"
 #include "fireswarm/planner/transit.hpp"
 #include "fireswarm/radio/master_scheduler.hpp"
+#include "fireswarm/server/command_auth.hpp"
 #include "fireswarm/server/command_status.hpp"
 #include "fireswarm/server/fire_fusion.hpp"
 #include "fireswarm/server/handover.hpp"
@@ -117,6 +127,11 @@ struct ServerConfig {
   double camera_pitch_deg = -90.0;
   /// Where the fleet launches, local metres, for the published plan only.
   std::optional<common::EastNorth> launch_en_m;
+  /// Operator ID -> key: whose signed commands HandleSigned takes (loaded from a
+  /// key store by operator_keys.hpp). Empty: every signed command is refused.
+  std::map<std::string, common::SecretKey> operators;
+  /// HandleSigned's window around the server's LCM clock, microseconds (> 0).
+  std::int64_t command_window_us = kDefaultCommandWindowUs;
   /// Throws std::invalid_argument naming the field (`camera` missing with an
   /// `area`, a camera field or camera_pitch_deg out of range).
   void Validate() const;
@@ -125,7 +140,7 @@ struct ServerConfig {
 class Server {
  public:
   /// `frame`: the local frame fire positions are fused in (the mission area's).
-  /// Throws std::invalid_argument as ServerConfig::Validate.
+  /// Throws std::invalid_argument as ServerConfig::Validate (and for a window <= 0).
   Server(const ServerConfig& config, const common::LocalFrame& frame);
 
   /// Registers a vehicle with the registry and the scheduler. Throws
@@ -143,6 +158,17 @@ class Server {
   /// receives the ID of its record in commands().
   bool Handle(const OperatorCommand& command, common::Nanos now, std::string* why = nullptr,
               std::int32_t* command_id = nullptr);
+  /// A command from outside the process: verified first (CommandVerifier with
+  /// ServerConfig::operators and command_window_us, at `now_utime`, the server's
+  /// LCM clock in microseconds), then carried out as Handle. When the verdict
+  /// (stored in `verdict` if given) is not kAccepted, the command is refused:
+  /// journaled and counted (CommandRefused), `why` says why, and false.
+  bool HandleSigned(const SignedCommand& command, common::Nanos now, std::int64_t now_utime,
+                    std::string* why = nullptr, std::int32_t* command_id = nullptr,
+                    CommandVerdict* verdict = nullptr);
+  /// Journals and counts a command an adapter could not read (its verdict, e.g.
+  /// kMalformed, and why are in `refusal`), as HandleSigned does its refusals.
+  void Refuse(CommandRefused refusal, common::Nanos now);
 
   /// Feeds the bytes received up to `now` and returns what to transmit.
   std::vector<radio::Burst> Step(common::Nanos now, std::span<const std::uint8_t> received);
@@ -188,11 +214,23 @@ class Server {
   /// Drones given up as lost whose lanes went to others -> true once heard again
   /// (and ordered home).
   const std::map<std::uint8_t, bool>& handed_over() const { return handed_over_; }
+  /// Commands refused unread or unauthenticated since this server started, per
+  /// CommandVerdict (index kAccepted stays 0).
+  const std::array<std::uint64_t, 6>& command_refusals() const { return command_refusals_; }
+  /// The latest refusals (at most kKeptRefusals), oldest first, and how many
+  /// there have been in all: an adapter that remembers how many it answered
+  /// answers the newer ones.
+  const std::deque<CommandRefused>& recent_refusals() const { return recent_refusals_; }
+  std::uint64_t refusal_count() const { return refusal_count_; }
+  static constexpr std::size_t kKeptRefusals = 64;
   /// Bytes the server has transmitted (all bursts) and received, since it started.
   std::uint64_t bytes_sent() const { return bytes_sent_; }
   std::uint64_t bytes_received() const { return bytes_received_; }
 
  private:
+  bool Carry(const OperatorCommand& command, common::Nanos now, std::string* why,
+             std::int32_t* command_id, const CommandCredentials* signer);
+  void Attribute(std::int32_t command_id, const CommandCredentials& signer);
   void OnEvent(const radio::SchedulerEvent& event, double now_s);
   void MarkCoverage(const radio::Telemetry& telemetry, const Eigen::Vector2d& where_en_m);
   void OnFireReport(const radio::FireReportReceived& received, double now_s);
@@ -247,6 +285,10 @@ class Server {
   CommandLog commands_;
   std::int32_t start_command_id_ = 0;  // the start's record, 0: none this life
   std::vector<JournalEntry> journal_;
+  CommandVerifier verifier_;
+  std::array<std::uint64_t, 6> command_refusals_{};
+  std::deque<CommandRefused> recent_refusals_;
+  std::uint64_t refusal_count_ = 0;
   bool restoring_ = false;
   std::uint64_t bytes_sent_ = 0;
   std::uint64_t bytes_received_ = 0;
