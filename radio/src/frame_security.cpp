@@ -14,6 +14,22 @@ constexpr std::uint64_t kCounterLimit = std::uint64_t{1} << 32;  // counters are
 
 }  // namespace
 
+FrameSecurityConfig ServerSecurityConfig() {
+  FrameSecurityConfig config;
+  config.self_id = kServerId;
+  config.persist_floor_on = {static_cast<std::uint8_t>(MessageId::kFireReport)};
+  return config;
+}
+
+FrameSecurityConfig VehicleSecurityConfig(std::uint8_t id) {
+  FrameSecurityConfig config;
+  config.self_id = id;
+  config.persist_floor_on = {static_cast<std::uint8_t>(MessageId::kMissionChunk),
+                             static_cast<std::uint8_t>(MessageId::kCommand),
+                             static_cast<std::uint8_t>(MessageId::kParamWrite)};
+  return config;
+}
+
 std::string_view ToString(SealStatus status) {
   switch (status) {
     case SealStatus::kOk:

@@ -49,6 +49,11 @@ struct FrameSecurityConfig {
   std::vector<std::uint8_t> persist_floor_on;
 };
 
+/// The server's configuration: fire reports persist their vehicle's replay floor.
+FrameSecurityConfig ServerSecurityConfig();
+/// Vehicle `id`'s: mission chunks, commands and parameter writes persist the server's floor.
+FrameSecurityConfig VehicleSecurityConfig(std::uint8_t id);
+
 enum class SealStatus : std::uint8_t {
   kOk,
   kNoKey,             ///< no key for the receiver
