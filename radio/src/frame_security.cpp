@@ -30,6 +30,29 @@ FrameSecurityConfig VehicleSecurityConfig(std::uint8_t id) {
   return config;
 }
 
+std::string_view ToString(KeyLinkState state) {
+  switch (state) {
+    case KeyLinkState::kUnheard:
+      return "unheard";
+    case KeyLinkState::kOk:
+      return "ok";
+    case KeyLinkState::kAuthFailing:
+      return "authentication failing";
+    case KeyLinkState::kNoKey:
+      return "no key";
+  }
+  return "unknown";
+}
+
+KeyLinkState LinkStateOf(const KeySecurityStats& stats) {
+  if (stats.failures_in_a_row >= kFailuresToReport) {
+    return stats.no_key > 0 && stats.auth_failures == 0 ? KeyLinkState::kNoKey
+                                                        : KeyLinkState::kAuthFailing;
+  }
+  if (stats.opened > 0) return KeyLinkState::kOk;
+  return KeyLinkState::kUnheard;
+}
+
 std::string_view ToString(SealStatus status) {
   switch (status) {
     case SealStatus::kOk:
@@ -152,6 +175,7 @@ OpenStatus FrameSecurity::Open(const FrameView& frame, std::vector<std::uint8_t>
   const auto keys = keys_.find(header.key_id);
   if (keys == keys_.end()) {
     ++stats.no_key;
+    ++stats.failures_in_a_row;
     return OpenStatus::kNoKey;
   }
   ReplayWindow& window = WindowFor(header.key_id);
@@ -165,6 +189,7 @@ OpenStatus FrameSecurity::Open(const FrameView& frame, std::vector<std::uint8_t>
     under_previous = k.previous && OpenSecureFrame(frame, *k.previous, plaintext);
     if (!under_previous) {
       ++stats.auth_failures;
+      ++stats.failures_in_a_row;
       return OpenStatus::kAuthFailed;
     }
     ++stats.previous_key_used;
@@ -173,6 +198,7 @@ OpenStatus FrameSecurity::Open(const FrameView& frame, std::vector<std::uint8_t>
   window.Mark(header.counter);
   k.peer_uses_previous = under_previous;
   ++stats.opened;
+  stats.failures_in_a_row = 0;
   const bool persist_floor =
       std::find(config_.persist_floor_on.begin(), config_.persist_floor_on.end(),
                 frame.message_id) != config_.persist_floor_on.end();

@@ -81,7 +81,22 @@ struct KeySecurityStats {
   std::uint64_t replays = 0;
   std::uint64_t no_key = 0;
   std::uint64_t previous_key_used = 0;  ///< frames authenticated under the previous key
+  /// Authentication failures (or frames with no key) since the last frame that opened.
+  std::uint64_t failures_in_a_row = 0;
 };
+
+/// What a key's counters say about its link, for operators and logs.
+enum class KeyLinkState : std::uint8_t {
+  kUnheard,      ///< nothing under this key yet
+  kOk,           ///< its frames authenticate
+  kAuthFailing,  ///< kFailuresToReport frames in a row failed: wrong key or forgery
+  kNoKey,        ///< frames came under a key ID this side holds no key for
+};
+inline constexpr std::uint64_t kFailuresToReport = 3;
+/// "unheard", "ok", "authentication failing", "no key".
+std::string_view ToString(KeyLinkState state);
+/// The state `stats` shows.
+KeyLinkState LinkStateOf(const KeySecurityStats& stats);
 
 class FrameSecurity {
  public:
