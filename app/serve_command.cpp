@@ -22,6 +22,7 @@
 #include "fireswarm/server/lcm_bridge.hpp"
 #include "fireswarm/server/mission_manager.hpp"
 #include "fireswarm/server/server.hpp"
+#include "key_store.hpp"
 #include "link_flags.hpp"
 #include "serve_loop.hpp"
 #include "stop_signals.hpp"
@@ -54,6 +55,7 @@ struct Flags {
   std::string log;
   std::string csv;
   std::string journal;
+  std::string radio_state;
   bool start = false;
   std::optional<double> duration_s;
   bool until_complete = false;
@@ -63,6 +65,14 @@ struct Flags {
 [[noreturn]] void BadFlag(const std::string& flag, const std::string& requirement,
                           const std::string& got) {
   ThrowBadFlag(kName, flag, requirement, got);
+}
+
+// Where the server keeps its frame counter and replay floors: --radio-state, else
+// next to the journal; empty when unsecured.
+fs::path RadioStatePath(const Flags& f) {
+  if (!f.radio_state.empty()) return f.radio_state;
+  if (!f.journal.empty()) return fs::path(f.journal + ".radio-state");
+  return {};
 }
 
 void CheckFlags(const Flags& f, const po::variables_map& values) {
@@ -90,7 +100,19 @@ void CheckFlags(const Flags& f, const po::variables_map& values) {
         "fireswarm serve: give --start, or --lcm URL or --http HOST:PORT to wait for an "
         "operator's START (otherwise the mission would never start)");
   }
+  // Last, so a flag above that is wrong is named first.
+  RequireKeys(kName, f.link);
+  if (IsSecure(f.link) && RadioStatePath(f).empty()) {
+    throw UsageError(
+        "fireswarm serve: --checksum secure needs --journal FILE or --radio-state FILE: the "
+        "frame counter must survive a restart, or the vehicles refuse the restarted server");
+  }
+  if (!f.radio_state.empty() && !IsSecure(f.link)) {
+    throw UsageError("fireswarm serve: --radio-state goes with --checksum secure");
+  }
 }
+
+std::vector<int> ReceiverIds(const Flags& f);
 
 // Where the fleet launches, local metres: --launch, or the area's default.
 planner::Point LaunchPoint(const Flags& f, const planner::SearchArea& area) {
@@ -107,6 +129,14 @@ server::ServerConfig ServerConfigFor(const Flags& f, const planner::SearchArea& 
   server::ServerConfig config;
   config.radio.mode = ModeOf(f.link);
   config.radio.checksum = ChecksumOf(f.link);
+  if (IsSecure(f.link)) {
+    try {
+      config.radio.security =
+          ServerSecurityFromStore(f.link.keys, ReceiverIds(f), RadioStatePath(f));
+    } catch (const std::runtime_error& e) {
+      throw UsageError(std::string("fireswarm serve: ") + e.what());
+    }
+  }
   config.radio.timing.baud = static_cast<int>(f.link.baud);
   config.telemetry_hz = f.telemetry_hz;
   config.no_fly = area.no_fly;
@@ -222,6 +252,8 @@ po::options_description OptionsFor(Flags& f) {
   add("csv", po::value(&f.csv)->value_name("DIR"), "write one CSV per message type into DIR");
   add("journal", po::value(&f.journal)->value_name("FILE"),
       "append mission state and fire reports here; an existing journal is resumed");
+  add("radio-state", po::value(&f.radio_state)->value_name("FILE"),
+      "secure mode: the frame counter and replay floors (default: JOURNAL.radio-state)");
   add("start", po::bool_switch(&f.start),
       "start the mission at once (default: wait for an operator START on LCM)");
   add("duration-s", po::value<double>()->notifier([&f](double v) { f.duration_s = v; }),
@@ -245,6 +277,7 @@ int RunServe(const std::vector<std::string>& args) {
     return kExitOk;
   }
   CheckFlags(f, values);
+  WarnIfUnsecured(kName, f.link);
   const planner::SearchArea area = planner::LoadSearchArea(
       f.area, f.no_fly.empty() ? std::nullopt : std::optional<fs::path>(f.no_fly));
   const server::ServerConfig config = ServerConfigFor(f, area);

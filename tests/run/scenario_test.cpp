@@ -670,6 +670,8 @@ TEST(RepositoryScenarios, DemoLoadsWithFourDronesThreeFiresAndExpectations) {
   EXPECT_EQ(s.fires.size(), 3U);
   EXPECT_EQ(s.distractors.size(), 1U);
   EXPECT_GT(s.wind.speed_mps, 0.0);
+  // Flown secured (ctest scenario.demo runs it whole): issue 17.
+  EXPECT_EQ(s.radio.checksum, radio::ChecksumMode::kSecure);
   const double area_km2 = bg::area(s.area.area) / 1e6;
   EXPECT_GT(area_km2, 1.0);
   EXPECT_LT(area_km2, 5.0);
