@@ -11,10 +11,10 @@
 // refused (common::ReadSecretKeyFile). docs/protocol.md "Keys" gives the procedures.
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <iostream>
 #include <nlohmann/json.hpp>
-#include <regex>
 #include <string>
 #include <vector>
 
@@ -95,8 +95,13 @@ void AddVehicles(const fs::path& store, const std::vector<int>& ids) {
 }
 
 void AddOperator(const fs::path& store, const std::string& name) {
-  static const std::regex kOperatorName("[A-Za-z0-9_-]{1,64}");
-  if (!std::regex_match(name, kOperatorName)) {
+  constexpr std::size_t kMaxOperatorName = 64;
+  const auto allowed = [](char c) {
+    return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_' ||
+           c == '-';
+  };
+  if (name.empty() || name.size() > kMaxOperatorName ||
+      !std::all_of(name.begin(), name.end(), allowed)) {
     Bad("--name must be 1 to 64 letters, digits, '_' or '-', got '" + name + "'");
   }
   const fs::path path = OperatorKeyPath(store, name);

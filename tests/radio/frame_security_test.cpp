@@ -232,5 +232,20 @@ TEST(FrameSecurity, NoneOfOneHundredThousandForgedReplayedTruncatedOrFlippedFram
   EXPECT_GT(reached, kAttempts * 9 / 10);
 }
 
+TEST(FrameSecurity, AVehicleOnTheWrongKeyIsReportedAsAuthenticationFailingNotSilent) {
+  Disk server_disk, vehicle_disk;
+  auto server = ServerSecurity({kVehicle}, server_disk);
+  FrameSecurityConfig config = VehicleSecurityConfig(kVehicle);
+  FrameSecurity wrong(config, {}, {});
+  wrong.SetKey(kVehicle, TestKey(99));
+  auto right = VehicleSecurity(kVehicle, vehicle_disk);
+  EXPECT_EQ(LinkStateOf(KeySecurityStats{}), KeyLinkState::kUnheard);
+  for (int i = 0; i < 3; ++i) OpenAll(*server, Sealed(wrong, kServerId, Telemetry{{kVehicle, 0}}));
+  EXPECT_EQ(LinkStateOf(server->stats().at(kVehicle)), KeyLinkState::kAuthFailing);
+  EXPECT_EQ(ToString(KeyLinkState::kAuthFailing), "authentication failing");
+  OpenAll(*server, Sealed(*right, kServerId, Telemetry{{kVehicle, 0}}));
+  EXPECT_EQ(LinkStateOf(server->stats().at(kVehicle)), KeyLinkState::kOk);
+}
+
 }  // namespace
 }  // namespace fireswarm::radio
