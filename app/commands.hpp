@@ -17,5 +17,6 @@ int RunRun(const std::vector<std::string>& args);
 int RunReplay(const std::vector<std::string>& args);
 int RunServe(const std::vector<std::string>& args);
 int RunSim(const std::vector<std::string>& args);
+int RunKeys(const std::vector<std::string>& args);
 
 }  // namespace fireswarm::app

@@ -1,5 +1,7 @@
 #include "link_flags.hpp"
 
+#include <iostream>
+
 #include "cli.hpp"
 
 namespace fireswarm::app {
@@ -14,7 +16,12 @@ void AddLinkOptions(po::options_description& options, LinkFlags& f) {
   add("baud", po::value(&f.baud)->default_value(f.baud),
       "serial speed, 8N1 (with --serial); turn timing assumes it on both ends");
   add("mode", po::value(&f.mode)->default_value(f.mode), "poll or slots, on both ends");
-  add("checksum", po::value(&f.checksum)->default_value(f.checksum), "xor or crc16, on both ends");
+  add("checksum", po::value(&f.checksum)->default_value(f.checksum),
+      "secure (AES-256-GCM, keys from --keys), crc16 or xor (unsecured: anyone on the "
+      "channel can command the fleet), on both ends");
+  add("keys", po::value(&f.keys)->value_name("DIR"),
+      "the fleet key store (fireswarm keys init DIR): vehicle keys for --checksum secure; "
+      "serve also takes its operators' keys from DIR/operators/");
   add("print-bound-port", po::bool_switch(&f.print_bound_port),
       "print 'bound_port=<port>' on stdout once the UDP link is bound");
 }
@@ -44,7 +51,7 @@ void CheckLinkFlags(const std::string& command, const LinkFlags& f,
     throw UsageError(prefix + "--mode must be poll or slots, got '" + f.mode + "'");
   }
   if (!radio::ParseChecksumMode(f.checksum)) {
-    throw UsageError(prefix + "--checksum must be xor or crc16, got '" + f.checksum + "'");
+    throw UsageError(prefix + "--checksum must be secure, crc16 or xor, got '" + f.checksum + "'");
   }
 }
 
@@ -66,6 +73,28 @@ radio::LinkMode ModeOf(const LinkFlags& f) {
 
 radio::ChecksumMode ChecksumOf(const LinkFlags& f) {
   return *radio::ParseChecksumMode(f.checksum);
+}
+
+bool IsSecure(const LinkFlags& f) {
+  return ChecksumOf(f) == radio::ChecksumMode::kSecure;
+}
+
+void RequireKeys(const std::string& command, const LinkFlags& f) {
+  if (IsSecure(f) && f.keys.empty()) {
+    throw UsageError("fireswarm " + command +
+                     ": --checksum secure (the default) needs --keys DIR, the fleet key store "
+                     "(create one with 'fireswarm keys init DIR' and 'fireswarm keys add-vehicle "
+                     "DIR --id N'); --checksum crc16 runs the link unsecured");
+  }
+}
+
+void WarnIfUnsecured(const std::string& command, const LinkFlags& f) {
+  if (IsSecure(f)) return;
+  std::cerr << "fireswarm " << command << ": WARNING: the radio link runs UNSECURED (--checksum "
+            << f.checksum
+            << "): anyone on the channel can upload missions, send vehicles home, rewrite their "
+               "parameters and forge fire reports. Use --checksum secure --keys DIR."
+            << std::endl;
 }
 
 }  // namespace fireswarm::app

@@ -1,6 +1,6 @@
 // The radio-link flags shared by the commands that talk over a real link
 // (`vehicle`, `sim`, `serve`): --udp LOCAL REMOTE | --serial DEVICE [--baud B],
-// --mode, --checksum, --print-bound-port; their checks and the link they open.
+// --mode, --checksum, --keys, --print-bound-port; their checks and the link they open.
 #pragma once
 
 #include <boost/program_options.hpp>
@@ -19,7 +19,10 @@ struct LinkFlags {
   std::string serial;            ///< device, empty = none
   unsigned baud = 57'600;
   std::string mode = "slots";
-  std::string checksum = "crc16";
+  /// secure (the default; issue 17), crc16 or xor.
+  std::string checksum = "secure";
+  /// The fleet key store (key_store.hpp), for --checksum secure; empty = none.
+  std::string keys;
   bool print_bound_port = false;
 };
 
@@ -42,5 +45,15 @@ OpenedLink OpenLink(const LinkFlags& flags);
 /// The link timing, mode and checksum the flags select. Precondition: CheckLinkFlags passed.
 radio::LinkMode ModeOf(const LinkFlags& flags);
 radio::ChecksumMode ChecksumOf(const LinkFlags& flags);
+
+/// Whether the flags secure the link (--checksum secure).
+bool IsSecure(const LinkFlags& flags);
+
+/// Throws UsageError ("fireswarm <command>: --checksum secure needs --keys DIR ...")
+/// when the link is secured but no key store is given.
+void RequireKeys(const std::string& command, const LinkFlags& flags);
+
+/// Prints the loud warning of an unsecured real link on stderr (once, at start).
+void WarnIfUnsecured(const std::string& command, const LinkFlags& flags);
 
 }  // namespace fireswarm::app

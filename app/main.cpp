@@ -16,6 +16,8 @@ namespace {
 using fireswarm::app::Command;
 
 constexpr std::array kCommands{
+    Command{"keys", "create the fleet key store, add, provision and rotate radio and operator keys",
+            fireswarm::app::RunKeys},
     Command{"params", "list the vehicle's parameters (IDs, ranges), or a vehicle's parameter file",
             fireswarm::app::RunParams},
     Command{"plan", "plan the fleet's search of a GeoJSON area; write GeoJSON and QGC .plan files",

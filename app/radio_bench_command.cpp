@@ -100,7 +100,7 @@ RadioBenchConfig ToConfig(const Flags& f) {
   const auto mode = radio::ParseLinkMode(f.mode);
   if (!mode) BadFlag("mode", "poll or slots", f.mode);
   const auto checksum = radio::ParseChecksumMode(f.checksum);
-  if (!checksum) BadFlag("checksum", "xor or crc16", f.checksum);
+  if (!checksum) BadFlag("checksum", "xor, crc16 or secure", f.checksum);
   // The scheduler sends the turnaround as u16 microseconds in a SlotSchedule.
   if (!(f.turnaround_ms >= 0 && f.turnaround_ms <= kMaxTurnaroundMs)) {
     BadFlag("turnaround-ms", "in [0, 65.535]", Text(f.turnaround_ms));
@@ -234,7 +234,8 @@ int RunRadioBench(const std::vector<std::string>& args) {
   add("bit-error-rate", po::value(&f.bit_error_rate)->default_value(f.bit_error_rate),
       "probability each received bit is flipped");
   add("mode", po::value(&f.mode)->default_value(f.mode), "poll or slots");
-  add("checksum", po::value(&f.checksum)->default_value(f.checksum), "xor or crc16");
+  add("checksum", po::value(&f.checksum)->default_value(f.checksum),
+      "xor, crc16 or secure (AES-256-GCM under simulation keys)");
   add("seed", po::value(&f.seed)->default_value(f.seed), "random seed");
   add("report-rate", po::value(&f.report_rate)->default_value(f.report_rate),
       "fire reports per vehicle per minute (Poisson)");

@@ -76,6 +76,11 @@ int RunRadioDecode(const std::vector<std::string>& args) {
   }
 
   const std::optional<radio::ChecksumMode> mode = radio::ParseChecksumMode(checksum);
+  if (mode == radio::ChecksumMode::kSecure) {
+    throw UsageError(
+        "fireswarm radio-decode: --checksum secure captures are encrypted; radio-decode reads "
+        "xor and crc16 captures only");
+  }
   if (!mode) {
     throw UsageError("fireswarm radio-decode: --checksum must be 'xor' or 'crc16', not '" +
                      checksum + "'");

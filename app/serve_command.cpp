@@ -23,6 +23,7 @@
 #include "fireswarm/server/mission_manager.hpp"
 #include "fireswarm/server/operator_keys.hpp"
 #include "fireswarm/server/server.hpp"
+#include "key_store.hpp"
 #include "launch_flags.hpp"
 #include "link_flags.hpp"
 #include "serve_loop.hpp"
@@ -59,7 +60,7 @@ struct Flags {
   std::string log;
   std::string csv;
   std::string journal;
-  std::string keys;
+  std::string radio_state;
   bool start = false;
   std::optional<double> duration_s;
   bool until_complete = false;
@@ -69,6 +70,14 @@ struct Flags {
 [[noreturn]] void BadFlag(const std::string& flag, const std::string& requirement,
                           const std::string& got) {
   ThrowBadFlag(kName, flag, requirement, got);
+}
+
+// Where the server keeps its frame counter and replay floors: --radio-state, else
+// next to the journal; empty when unsecured.
+fs::path RadioStatePath(const Flags& f) {
+  if (!f.radio_state.empty()) return f.radio_state;
+  if (!f.journal.empty()) return fs::path(f.journal + ".radio-state");
+  return {};
 }
 
 void CheckFlags(const Flags& f, const po::variables_map& values) {
@@ -97,11 +106,21 @@ void CheckFlags(const Flags& f, const po::variables_map& values) {
         "fireswarm serve: give --start, or --lcm URL or --http HOST:PORT to wait for an "
         "operator's START (otherwise the mission would never start)");
   }
-  if (!f.start && f.keys.empty()) {
+  if (!f.start && f.link.keys.empty()) {
     throw UsageError(
         "fireswarm serve: without --start, give --keys DIR: an operator's START must be signed "
         "with a key in DIR/operators/ (otherwise every command is refused and the mission would "
         "never start)");
+  }
+  // Last, so a flag above that is wrong is named first.
+  RequireKeys(kName, f.link);
+  if (IsSecure(f.link) && RadioStatePath(f).empty()) {
+    throw UsageError(
+        "fireswarm serve: --checksum secure needs --journal FILE or --radio-state FILE: the "
+        "frame counter must survive a restart, or the vehicles refuse the restarted server");
+  }
+  if (!f.radio_state.empty() && !IsSecure(f.link)) {
+    throw UsageError("fireswarm serve: --radio-state goes with --checksum secure");
   }
 }
 
@@ -133,6 +152,14 @@ server::ServerConfig ServerConfigFor(const Flags& f, const planner::SearchArea& 
   server::ServerConfig config;
   config.radio.mode = ModeOf(f.link);
   config.radio.checksum = ChecksumOf(f.link);
+  if (IsSecure(f.link)) {
+    try {
+      config.radio.security =
+          ServerSecurityFromStore(f.link.keys, ReceiverIds(f), RadioStatePath(f));
+    } catch (const std::runtime_error& e) {
+      throw UsageError(std::string("fireswarm serve: ") + e.what());
+    }
+  }
   config.radio.timing.baud = static_cast<int>(f.link.baud);
   config.telemetry_hz = f.telemetry_hz;
   config.no_fly = area.no_fly;
@@ -142,9 +169,9 @@ server::ServerConfig ServerConfigFor(const Flags& f, const planner::SearchArea& 
   // The published plan shows one site: the first.
   const planner::Point launch = FleetFor(f, area).launch_points.front();
   config.launch_en_m = common::EastNorth{launch.x(), launch.y()};
-  if (!f.keys.empty()) {
+  if (!f.link.keys.empty()) {
     try {
-      config.operators = server::LoadOperatorKeys(f.keys);
+      config.operators = server::LoadOperatorKeys(f.link.keys);
     } catch (const std::runtime_error& e) {
       throw UsageError(std::string("fireswarm serve: --keys: ") + e.what());
     }
@@ -280,9 +307,8 @@ po::options_description OptionsFor(Flags& f) {
   add("csv", po::value(&f.csv)->value_name("DIR"), "write one CSV per message type into DIR");
   add("journal", po::value(&f.journal)->value_name("FILE"),
       "append mission state and fire reports here; an existing journal is resumed");
-  add("keys", po::value(&f.keys)->value_name("DIR"),
-      "fleet key store: operator commands (LCM, --http) must be signed with a key in "
-      "DIR/operators/NAME.key (without it every command is refused)");
+  add("radio-state", po::value(&f.radio_state)->value_name("FILE"),
+      "secure mode: the frame counter and replay floors (default: JOURNAL.radio-state)");
   add("start", po::bool_switch(&f.start),
       "start the mission at once (default: wait for an operator START on LCM)");
   add("duration-s", po::value<double>()->notifier([&f](double v) { f.duration_s = v; }),
@@ -306,6 +332,7 @@ int RunServe(const std::vector<std::string>& args) {
     return kExitOk;
   }
   CheckFlags(f, values);
+  WarnIfUnsecured(kName, f.link);
   const planner::SearchArea area = planner::LoadSearchArea(
       f.area, f.no_fly.empty() ? std::nullopt : std::optional<fs::path>(f.no_fly));
   const server::ServerConfig config = ServerConfigFor(f, area);

@@ -124,6 +124,28 @@ void ServeLoop::HandleOperatorCommands(Nanos now) {
   }
 }
 
+void ServeLoop::WatchAuthentication(Nanos now) {
+  const radio::FrameSecurity* security = server_.scheduler().config().security.get();
+  if (security == nullptr) return;
+  for (const auto& [key_id, stats] : security->stats()) {
+    if (key_id == radio::kBroadcastKeyId) continue;
+    const radio::KeyLinkState state = radio::LinkStateOf(stats);
+    const auto [it, first] = auth_states_.try_emplace(key_id, radio::KeyLinkState::kUnheard);
+    if (!first && it->second == state) continue;
+    if (first && state == radio::KeyLinkState::kUnheard) continue;
+    it->second = state;
+    nlohmann::ordered_json line;
+    line["event"] = "radio_auth";
+    line["t_s"] = common::ToSeconds(now);
+    line["vehicle"] = key_id;
+    line["state"] = std::string(radio::ToString(state));
+    line["auth_failures"] = stats.auth_failures;
+    line["replays"] = stats.replays;
+    line["no_key"] = stats.no_key;
+    std::cerr << line.dump() << std::endl;
+  }
+}
+
 ServeStop ServeLoop::Run(const ServeOptions& options) {
   const Clock::time_point start = Clock::now();
   const auto now = [&] { return options.clock_offset + (Clock::now() - start); };
@@ -149,6 +171,7 @@ ServeStop ServeLoop::Run(const ServeOptions& options) {
       CountFrames(burst);
     }
     FlushJournal();  // durable before anything else happens
+    WatchAuthentication(t);
     if (bridge_ != nullptr)
       bridge_->Publish(server_, common::ToSeconds(t), UnixMicros(), utime_at_zero);
     if (options.on_step) {
@@ -196,6 +219,12 @@ nlohmann::ordered_json ServeLoop::Summary() const {
     nlohmann::ordered_json v;
     v["id"] = id;
     v["link"] = std::string(server::ToString(server_.registry().LinkAt(id, clock_s_)));
+    if (const radio::FrameSecurity* security = server_.scheduler().config().security.get()) {
+      const auto found = security->stats().find(id);
+      v["radio_auth"] = std::string(radio::ToString(found == security->stats().end()
+                                                        ? radio::KeyLinkState::kUnheard
+                                                        : radio::LinkStateOf(found->second)));
+    }
     if (const server::MissionManager* mission = server_.mission()) {
       const auto ids = mission->vehicles();
       if (std::find(ids.begin(), ids.end(), id) != ids.end()) {
@@ -229,12 +258,19 @@ nlohmann::ordered_json ServeLoop::Summary() const {
   j["tracks"] = std::move(tracks);
   j["frames_sent"] = frames_sent_;
   const radio::SchedulerStats& stats = server_.scheduler().stats();
-  j["radio"] = {
-      {"bytes_sent", server_.bytes_sent()},       {"bytes_received", server_.bytes_received()},
-      {"requests_sent", stats.requests_sent},     {"retries", stats.retries},
-      {"requests_failed", stats.requests_failed}, {"replies", stats.replies},
-      {"missed_replies", stats.missed_replies},   {"telemetry", stats.telemetry},
-      {"fire_reports", stats.fire_reports}};
+  j["radio"] = {{"bytes_sent", server_.bytes_sent()},
+                {"bytes_received", server_.bytes_received()},
+                {"requests_sent", stats.requests_sent},
+                {"retries", stats.retries},
+                {"requests_failed", stats.requests_failed},
+                {"replies", stats.replies},
+                {"missed_replies", stats.missed_replies},
+                {"telemetry", stats.telemetry},
+                {"fire_reports", stats.fire_reports},
+                {"secured", server_.scheduler().config().security != nullptr},
+                {"refused_frames", stats.refused_frames},
+                {"out_of_turn", stats.out_of_turn},
+                {"seal_failures", stats.seal_failures}};
   j["journal_records_appended"] = journal_appended_;
   return j;
 }

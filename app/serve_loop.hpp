@@ -18,6 +18,7 @@
 
 #include "fireswarm/common/time.hpp"
 #include "fireswarm/radio/frame.hpp"
+#include "fireswarm/radio/frame_security.hpp"
 #include "fireswarm/radio/link.hpp"
 #include "fireswarm/radio/parser.hpp"
 #include "fireswarm/server/journal.hpp"
@@ -62,6 +63,9 @@ class ServeLoop {
 
  private:
   void CountFrames(const radio::Burst& burst);
+  // Secure mode: says on stderr when a vehicle's frames start or stop failing
+  // authentication (wrong or missing key), so it is not mistaken for a silent link.
+  void WatchAuthentication(common::Nanos now);
   void HandleOperatorCommands(common::Nanos now);
 
   server::Server& server_;
@@ -70,6 +74,7 @@ class ServeLoop {
   server::LcmBridge* bridge_;
   radio::FrameParser sent_parser_;                    // the server's own bursts, to count them
   std::map<std::string, std::uint64_t> frames_sent_;  // by message name
+  std::map<std::uint8_t, radio::KeyLinkState> auth_states_;  // last reported, per vehicle
   std::uint64_t journal_appended_ = 0;
   double wall_seconds_ = 0.0;
   double clock_s_ = 0.0;  // mission clock at the end

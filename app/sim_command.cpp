@@ -81,6 +81,7 @@ void CheckFlags(const Flags& f, const po::variables_map& values) {
   if (!(f.swap_s >= 0.0 && f.swap_s <= kMaxSwapS)) {
     ThrowBadFlag(kName, "swap-s", "in [0, 3600]", FlagText(f.swap_s));
   }
+  RequireKeys(kName, f.link);  // last, so a flag above that is wrong is named first
 }
 
 // Stands on a ring around the launch site (the world's origin), a few metres

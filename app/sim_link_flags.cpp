@@ -5,6 +5,7 @@
 #include "cli.hpp"
 #include "fireswarm/common/camera_model.hpp"
 #include "fireswarm/common/time.hpp"
+#include "key_store.hpp"
 
 namespace fireswarm::app {
 
@@ -23,6 +24,13 @@ agents::VehicleConfig VehicleConfigFor(int id, const LinkFlags& link, const std:
   config.radio.id = config.id;
   config.radio.mode = ModeOf(link);
   config.radio.checksum = ChecksumOf(link);
+  if (IsSecure(link) && !link.keys.empty()) {
+    try {
+      config.radio.security = VehicleSecurityFromStore(link.keys, id, {});
+    } catch (const std::runtime_error& e) {
+      throw UsageError(std::string("fireswarm: vehicle ") + std::to_string(id) + ": " + e.what());
+    }
+  }
   config.radio.timing.baud = static_cast<int>(link.baud);
   config.camera = common::CameraModelByName(camera);
   return config;

@@ -31,8 +31,9 @@ struct SimRunFlags {
 void CheckSimRunFlags(const std::string& command, const SimRunFlags& flags);
 
 /// Vehicle `id` carrying the camera model `camera`, talking the mode, checksum and
-/// baud the link flags select. Preconditions: CheckLinkFlags passed, `camera` is a
-/// known model (common::FindCameraModel).
+/// baud the link flags select; secure mode with its keys from --keys (counter in
+/// memory). Preconditions: CheckLinkFlags passed, `camera` is a known model
+/// (common::FindCameraModel). Throws UsageError naming a missing or unsafe key file.
 agents::VehicleConfig VehicleConfigFor(int id, const LinkFlags& link, const std::string& camera);
 
 /// Prints 'bound_port=<port>' on stdout when --print-bound-port asks for it (call it

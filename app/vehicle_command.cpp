@@ -17,6 +17,7 @@
 #include "fireswarm/common/camera_model.hpp"
 #include "fireswarm/common/local_frame.hpp"
 #include "fireswarm/server/vehicle_registry.hpp"
+#include "key_store.hpp"
 #include "link_flags.hpp"
 #include "sim_link_flags.hpp"
 #include "sim_link_loop.hpp"
@@ -66,6 +67,12 @@ void CheckFlags(const Flags& f, const po::variables_map& values) {
     }
   }
   CheckSimRunFlags(kName, f.run);
+  if (IsSecure(f.link) && f.link.keys.empty() && f.param_file.empty()) {
+    throw UsageError(
+        "fireswarm vehicle: --checksum secure (the default) needs its keys: --param-file PATH "
+        "with PATH.key and PATH.broadcast.key beside it (fireswarm keys provision), or --keys "
+        "DIR; --checksum crc16 runs the link unsecured");
+  }
 }
 
 // A 2 km square forest centred on the launch site (the world's origin) with the
@@ -93,9 +100,19 @@ sim2d::SimulationConfig WorldFor(const Flags& f) {
   return config;
 }
 
+// Secure mode: the keys provisioned next to the parameter file (the vehicle's own
+// storage), its counter and replay floor persisted there too; or --keys.
 agents::VehicleConfig VehicleFor(const Flags& f) {
   agents::VehicleConfig config = VehicleConfigFor(f.id, f.link, f.camera);
   config.param_file = f.param_file;
+  if (IsSecure(f.link) && f.link.keys.empty()) {
+    try {
+      config.radio.security = VehicleSecurityFromParamFile(f.param_file, f.id);
+    } catch (const std::runtime_error& e) {
+      throw UsageError(std::string("fireswarm vehicle: ") + e.what() +
+                       " (fireswarm keys provision DIR --id N --param-file PATH)");
+    }
+  }
   return config;
 }
 

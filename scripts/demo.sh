@@ -33,4 +33,4 @@ run plan --area scenarios/areas/convex.geojson --drones 20 --altitude-m 60 \
   --speed-mps 10 --camera seed --out "$out/forest_plan.geojson" --qgc "$out/qgc"
 echo "(plan written to $out/forest_plan.geojson, QGroundControl plans to $out/qgc/)"
 run sim-bench --drones 100 --camera seed --area-km2 25 --seconds 120
-run radio-bench --vehicles 50 --seconds 120 --mode slots
+run radio-bench --vehicles 50 --seconds 120 --mode slots --checksum secure

@@ -15,6 +15,8 @@ std::string_view ToString(ChecksumMode mode) {
       return "xor";
     case ChecksumMode::kCrc16:
       return "crc16";
+    case ChecksumMode::kSecure:
+      return "secure";
   }
   return "unknown";
 }
@@ -22,6 +24,7 @@ std::string_view ToString(ChecksumMode mode) {
 std::optional<ChecksumMode> ParseChecksumMode(std::string_view text) {
   if (text == "xor") return ChecksumMode::kXor;
   if (text == "crc16") return ChecksumMode::kCrc16;
+  if (text == "secure") return ChecksumMode::kSecure;
   return std::nullopt;
 }
 
@@ -44,6 +47,9 @@ void AppendFrame(std::vector<std::uint8_t>& out, std::uint8_t receiver, std::uin
   if (data.size() > kMaxDataSize) {
     throw std::invalid_argument("AppendFrame: data of " + std::to_string(data.size()) +
                                 " bytes exceeds the frame's maximum of 255");
+  }
+  if (mode == ChecksumMode::kSecure) {
+    throw std::invalid_argument("AppendFrame: a secure frame needs a key (AppendSecureFrame)");
   }
   const std::size_t start = out.size();
   // No exact reserve(start + frame size) here: it would defeat the vector's geometric

@@ -59,6 +59,7 @@ void SchedulerConfig::Validate() const {
   if (!(request_share >= 0.0 && request_share <= 1.0)) ThrowConfig("request_share", "in [0, 1]");
   if (max_report_slots_per_vehicle == 0) ThrowConfig("max_report_slots_per_vehicle", ">= 1");
   if (silent_after_missed_replies < 1) ThrowConfig("silent_after_missed_replies", ">= 1");
+  if (checksum == ChecksumMode::kSecure && !security) ThrowConfig("security", "set in secure mode");
 }
 
 MasterScheduler::MasterScheduler(const SchedulerConfig& config)

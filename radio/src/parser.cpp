@@ -44,9 +44,10 @@ PreambleMatch PreambleStartsIn(const std::uint8_t* first, const std::uint8_t* la
 // Whether the frame starting at `frame` (preamble included, fully buffered) carries
 // the right checksum over receiver ID, message ID, length and data.
 bool ChecksumMatches(const std::uint8_t* frame, std::size_t data_size, ChecksumMode mode) {
+  const std::size_t body = data_size + SecurityOverhead(mode);
   const std::span<const std::uint8_t> covered(frame + kPreamble.size(),
-                                              kHeaderSize - kPreamble.size() + data_size);
-  const std::uint8_t* checksum = frame + kHeaderSize + data_size;
+                                              kHeaderSize - kPreamble.size() + body);
+  const std::uint8_t* checksum = frame + kHeaderSize + body;
   if (mode == ChecksumMode::kXor) return Xor8(covered) == checksum[0];
   const auto received = static_cast<std::uint16_t>(checksum[0] | (checksum[1] << 8));
   return Crc16(covered) == received;
@@ -121,9 +122,16 @@ std::optional<FrameView> FrameParser::Scan(bool end_of_stream) {
     if (ChecksumMatches(frame, data_size, mode_)) {
       ++stats_.frames;
       begin_ = start + frame_size;
+      // Secure mode: the encrypted data sits behind key ID and counter.
+      const std::size_t data_at = mode_ == ChecksumMode::kSecure ? kSecureHeaderSize : 0;
       return FrameView{.receiver = frame[3],
                        .message_id = frame[4],
-                       .data = {frame + kHeaderSize, data_size},
+                       .data = {frame + kHeaderSize + data_at, data_size},
+                       .sealed = mode_ == ChecksumMode::kSecure
+                                     ? std::span<const std::uint8_t>(
+                                           frame + kPreamble.size(),
+                                           frame_size - kPreamble.size() - ChecksumSize(mode_))
+                                     : std::span<const std::uint8_t>{},
                        .offset = stats_.bytes - available};
     }
 

@@ -33,7 +33,10 @@ std::uint32_t CeilMicros(Nanos t) {
 void AppendFrom(SchedulerState& state, std::vector<std::uint8_t>& out, std::uint8_t receiver,
                 Message message) {
   std::visit([&](auto& m) { m.header = MessageHeader{kServerId, state.next_sequence++}; }, message);
-  AppendMessageFrame(out, receiver, message, state.config.checksum);
+  if (AppendFrameFor(out, receiver, message, state.config.checksum, state.config.security.get()) !=
+      SealStatus::kOk) {
+    ++state.stats.seal_failures;
+  }
 }
 
 void AppendOwedAcks(SchedulerState& state, std::vector<std::uint8_t>& out) {
@@ -48,13 +51,18 @@ void AppendOwedAcks(SchedulerState& state, std::vector<std::uint8_t>& out) {
 
 // The vehicle's outstanding request as a frame: its sequence number is taken when
 // first sent and kept on every resend.
-std::vector<std::uint8_t> RequestFrame(const SchedulerState& state, const VehicleState& v) {
+// A request that cannot be sealed (no key for the vehicle) is empty: it goes out as
+// nothing, gets no ack and fails after its retries, as a lost one would.
+std::vector<std::uint8_t> RequestFrame(SchedulerState& state, const VehicleState& v) {
   Message message = v.requests.front().message;
   if (!v.requests.front().sent) {
     std::visit([&](auto& m) { m.header.sequence = state.next_sequence; }, message);
   }
   std::vector<std::uint8_t> frame;
-  AppendMessageFrame(frame, v.id, message, state.config.checksum);
+  if (AppendFrameFor(frame, v.id, message, state.config.checksum, state.config.security.get()) !=
+      SealStatus::kOk) {
+    ++state.stats.seal_failures;
+  }
   return frame;
 }
 

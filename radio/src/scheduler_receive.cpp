@@ -83,18 +83,42 @@ void OnAck(SchedulerState& state, VehicleState& v, const Message& ack, Nanos now
   MarkMet(state, v.id, {ReplyKind::kAck});
 }
 
+// Whether the current exchange gave `vehicle` a turn (a slot or a poll).
+bool HasTurn(const SchedulerState& state, std::uint8_t vehicle) {
+  return state.exchange &&
+         std::any_of(state.exchange->expected.begin(), state.exchange->expected.end(),
+                     [&](const Expectation& e) { return e.vehicle == vehicle; });
+}
+
 void OnFrame(SchedulerState& state, const FrameView& frame, Nanos now) {
   if (frame.receiver != kServerId) return;
-  state.stats.payload_bytes += frame.data.size();
-  const DecodeResult decoded = DecodePayload(frame.message_id, frame.data);
+  const OpenedData opened =
+      OpenFrameData(frame, state.config.checksum, state.config.security.get(), state.opened);
+  if (opened.status != OpenStatus::kOk) {
+    ++state.stats.refused_frames;
+    return;
+  }
+  state.stats.payload_bytes += opened.data.size();
+  const DecodeResult decoded = DecodePayload(frame.message_id, opened.data);
   if (!decoded.message) {
     ++state.stats.decode_errors;
     return;
   }
   const Message& message = *decoded.message;
-  const auto found = state.vehicles.find(HeaderOf(message).sender);
+  const std::uint8_t sender = HeaderOf(message).sender;
+  // A vehicle's key speaks only for that vehicle: a captured vehicle cannot pose
+  // as another one.
+  if (state.config.checksum == ChecksumMode::kSecure && sender != FrameSecurity::KeyIdOf(frame)) {
+    ++state.stats.refused_frames;
+    return;
+  }
+  const auto found = state.vehicles.find(sender);
   if (found == state.vehicles.end()) {
     ++state.stats.unknown_senders;
+    return;
+  }
+  if (!HasTurn(state, sender)) {
+    ++state.stats.out_of_turn;
     return;
   }
   VehicleState& v = found->second;

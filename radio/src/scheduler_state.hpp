@@ -54,6 +54,7 @@ struct SchedulerState {
 
   SchedulerConfig config;
   FrameParser parser;
+  std::vector<std::uint8_t> opened;  // secure mode: the decrypted data of the current frame
   std::map<std::uint8_t, VehicleState> vehicles;  // ordered: deterministic iteration
   std::optional<Exchange> exchange;
   Nanos ready_at{0};                   // no burst may be decided before this

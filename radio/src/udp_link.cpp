@@ -1,6 +1,7 @@
 // The UDP transport on a Boost.Asio socket: each burst is one datagram, so a burst
-// arrives whole or not at all, as on the radio. The socket is not connected, so it
-// takes datagrams from any sender and an absent peer costs no ICMP errors.
+// arrives whole or not at all, as on the radio. The socket is not connected, so an
+// absent peer costs no ICMP errors; datagrams from anyone but the configured remote
+// are dropped and counted (today's forged fire reports came from another port).
 #include "fireswarm/radio/udp_link.hpp"
 
 #include <charconv>
@@ -76,6 +77,8 @@ struct UdpLink::Impl {
   udp::socket socket{io};
   std::string remote_text;
   udp::endpoint remote;
+  udp::endpoint sender;  // of the datagram being received
+  std::uint64_t foreign_datagrams = 0;
   std::unique_ptr<detail::AsyncReceiver> receiver;
 };
 
@@ -95,7 +98,18 @@ UdpLink::UdpLink(const std::string& local, const std::string& remote)
       impl_->io, Describe("local", local), kDatagramBufferBytes,
       [impl = impl_.get()](boost::asio::mutable_buffer buffer,
                            detail::AsyncReceiver::Completion done) {
-        impl->socket.async_receive(buffer, std::move(done));
+        impl->socket.async_receive_from(
+            buffer, impl->sender,
+            [impl, done = std::move(done)](const boost::system::error_code& read_error,
+                                           std::size_t bytes) {
+              // Only the configured peer speaks on this link: anything else keeps
+              // nothing of its datagram.
+              if (!read_error && impl->sender != impl->remote) {
+                ++impl->foreign_datagrams;
+                bytes = 0;
+              }
+              done(read_error, bytes);
+            });
       });
 }
 
@@ -132,6 +146,10 @@ void UdpLink::Receive(Nanos /*now*/, std::vector<std::uint8_t>& out) {
 
 bool UdpLink::WaitReadable(Nanos timeout) {
   return impl_->receiver->WaitReadable(timeout);
+}
+
+std::uint64_t UdpLink::foreign_datagrams() const {
+  return impl_->foreign_datagrams;
 }
 
 std::uint16_t UdpLink::local_port() const {

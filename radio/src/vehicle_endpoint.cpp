@@ -36,6 +36,9 @@ void VehicleEndpointConfig::Validate() const {
   if (max_queued_reports == 0) {
     throw std::invalid_argument("VehicleEndpointConfig.max_queued_reports must be > 0");
   }
+  if (checksum == ChecksumMode::kSecure && !security) {
+    throw std::invalid_argument("VehicleEndpointConfig.security must be set in secure mode");
+  }
 }
 
 VehicleEndpoint::VehicleEndpoint(const VehicleEndpointConfig& config,
@@ -83,7 +86,15 @@ std::vector<VehicleEndpoint::Received> VehicleEndpoint::Parse(Nanos now,
     } else {
       ++stats_.broadcast_frames;
     }
-    DecodeResult decoded = DecodePayload(frame.message_id, frame.data);
+    // Secure mode: nothing unauthenticated, replayed or keyed for another vehicle
+    // gets past here (the security object counts why).
+    const OpenedData opened =
+        OpenFrameData(frame, config_.checksum, config_.security.get(), opened_);
+    if (opened.status != OpenStatus::kOk) {
+      if (opened.status != OpenStatus::kNotForMe) ++stats_.refused_frames;
+      return;
+    }
+    DecodeResult decoded = DecodePayload(frame.message_id, opened.data);
     if (!decoded.message) {
       ++stats_.decode_errors;
       return;
@@ -212,7 +223,11 @@ void VehicleEndpoint::Send(Message reply, Nanos start, std::size_t max_bytes, Na
                            std::vector<Burst>& out) {
   SetHeader(reply, MessageHeader{config_.id, next_sequence_});
   std::vector<std::uint8_t> frame;
-  AppendMessageFrame(frame, kServerId, reply, config_.checksum);
+  if (AppendFrameFor(frame, kServerId, reply, config_.checksum, config_.security.get()) !=
+      SealStatus::kOk) {
+    ++stats_.seal_failures;
+    return;
+  }
   // Half duplex, as the channel enforces it: a radio that is receiving needs the
   // turnaround; one still transmitting may only continue after its last byte.
   const bool transmitting = now < transmitting_until_;

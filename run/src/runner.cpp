@@ -20,6 +20,7 @@
 #include "fireswarm/planner/plan.hpp"
 #include "fireswarm/radio/channel.hpp"
 #include "fireswarm/radio/channel_loop.hpp"
+#include "fireswarm/radio/simulation_keys.hpp"
 #include "fireswarm/server/journal.hpp"
 #include "fireswarm/server/journal_format.hpp"
 #include "fireswarm/server/mission_manager.hpp"
@@ -73,6 +74,11 @@ server::ServerConfig MakeServerConfig(const Scenario& scenario, const RunOptions
   config.operators[kRunnerOperator] = runner_key;
   config.radio.mode = scenario.radio.mode;
   config.radio.checksum = scenario.radio.checksum;
+  if (scenario.radio.checksum == radio::ChecksumMode::kSecure) {
+    std::vector<std::uint8_t> ids;
+    for (const int id : scenario.fleet.ReceiverIds()) ids.push_back(static_cast<std::uint8_t>(id));
+    config.radio.security = radio::SimulationServerSecurity(scenario.seed, ids);
+  }
   config.radio.timing.baud = scenario.radio.baud;
   config.radio.timing.turnaround = std::chrono::duration_cast<Nanos>(
       std::chrono::duration<double, std::milli>(scenario.radio.turnaround_ms));
@@ -167,6 +173,9 @@ class Lockstep {
       config.radio.id = config.id;
       config.radio.mode = server_config_.radio.mode;
       config.radio.checksum = server_config_.radio.checksum;
+      if (config.radio.checksum == radio::ChecksumMode::kSecure) {
+        config.radio.security = radio::SimulationVehicleSecurity(scenario.seed, config.id);
+      }
       config.radio.timing = server_config_.radio.timing;
       config.camera = *scenario.fleet.camera;
       auto vehicle = std::make_unique<agents::Vehicle>(config);

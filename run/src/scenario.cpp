@@ -30,8 +30,8 @@ std::array<std::string_view, N> RadioNames(const std::array<Enum, N>& values) {
   for (std::size_t i = 0; i < N; ++i) names[i] = radio::ToString(values[i]);
   return names;
 }
-constexpr std::array<radio::ChecksumMode, 2> kChecksumModes{radio::ChecksumMode::kXor,
-                                                            radio::ChecksumMode::kCrc16};
+constexpr std::array<radio::ChecksumMode, 3> kChecksumModes{
+    radio::ChecksumMode::kXor, radio::ChecksumMode::kCrc16, radio::ChecksumMode::kSecure};
 constexpr std::array<radio::LinkMode, 2> kLinkModes{radio::LinkMode::kPoll,
                                                     radio::LinkMode::kSlots};
 

@@ -236,6 +236,13 @@ nlohmann::json RadioJson(const radio_stats_t& m) {
   for (std::size_t i = 0; i < count; ++i) {
     ages[std::to_string(m.vehicle_ids[i])] = Number(m.telemetry_age_s[i]);
   }
+  nlohmann::json auth_failures = nlohmann::json::object();
+  nlohmann::json replays = nlohmann::json::object();
+  for (std::size_t i = 0; i < m.vehicle_ids.size(); ++i) {
+    const std::string id = std::to_string(m.vehicle_ids[i]);
+    if (i < m.auth_failures.size()) auth_failures[id] = m.auth_failures[i];
+    if (i < m.replays.size()) replays[id] = m.replays[i];
+  }
   return {
       {"window_s", Number(m.window_s)},
       {"busy_fraction", Number(m.busy_fraction)},
@@ -247,6 +254,10 @@ nlohmann::json RadioJson(const radio_stats_t& m) {
       {"retries", m.retries},
       {"timeouts", m.timeouts},
       {"telemetry_age_s", std::move(ages)},
+      {"secured", m.secured},
+      {"out_of_turn", m.out_of_turn},
+      {"auth_failures", std::move(auth_failures)},
+      {"replays", std::move(replays)},
   };
 }
 

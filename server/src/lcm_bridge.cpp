@@ -65,12 +65,13 @@ void CsvRows(std::ostream& out, const mission_status_t& m) {
 
 std::string CsvHeader(const radio_stats_t&) {
   return "utime,window_s,busy_fraction,payload_bytes_per_s,frames_sent,frames_received,"
-         "checksum_errors,collisions,retries,timeouts";
+         "checksum_errors,collisions,retries,timeouts,secured,out_of_turn";
 }
 void CsvRows(std::ostream& out, const radio_stats_t& m) {
   out << m.utime << ',' << m.window_s << ',' << m.busy_fraction << ',' << m.payload_bytes_per_s
       << ',' << m.frames_sent << ',' << m.frames_received << ',' << m.checksum_errors << ','
-      << m.collisions << ',' << m.retries << ',' << m.timeouts << '\n';
+      << m.collisions << ',' << m.retries << ',' << m.timeouts << ',' << (m.secured ? 1 : 0) << ','
+      << m.out_of_turn << '\n';
 }
 
 // A text field as one CSV cell (RFC 4180: quoted, quotes doubled).

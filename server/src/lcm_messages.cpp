@@ -169,9 +169,20 @@ radio_stats_t ToRadioStats(const Server& server, double now_s, std::int64_t utim
   m.commands_bad_mac = refused(CommandVerdict::kBadMac);
   m.commands_stale = refused(CommandVerdict::kStale);
   m.commands_replayed = refused(CommandVerdict::kReplayed);
+  const radio::FrameSecurity* security = server.scheduler().config().security.get();
+  m.secured = security != nullptr;
+  m.out_of_turn = static_cast<std::int64_t>(stats.out_of_turn);
   for (const std::uint8_t id : server.registry().ids()) {
     m.vehicle_ids.push_back(id);
     m.telemetry_age_s.push_back(server.registry().TelemetryAgeS(id, now_s).value_or(-1.0));
+    radio::KeySecurityStats key;
+    if (security != nullptr) {
+      if (const auto found = security->stats().find(id); found != security->stats().end()) {
+        key = found->second;
+      }
+    }
+    m.auth_failures.push_back(static_cast<std::int64_t>(key.auth_failures));
+    m.replays.push_back(static_cast<std::int64_t>(key.replays));
   }
   m.vehicle_count = static_cast<std::int16_t>(m.vehicle_ids.size());
   previous = RadioCounters{stats, server.bytes_sent(), server.bytes_received()};

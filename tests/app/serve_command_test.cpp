@@ -166,10 +166,18 @@ class ServeCommand : public CommandTest {
     CommandTest::SetUp();
     area_ = PathOf("area.geojson");
     std::ofstream(area_) << SmallArea();
+    // The link runs secured (the default): a key store with both vehicles' keys.
+    keys_ = PathOf("fleet_keys");
+    ASSERT_EQ(RunFireswarm("keys init " + keys_).exit_code, 0);
+    ASSERT_EQ(RunFireswarm("keys add-vehicle " + keys_ + " --id 1 --id 2").exit_code, 0);
   }
 
   std::vector<std::string> ServeArgs(const std::string& device) const {
     return {"serve",
+            "--keys",
+            keys_,
+            "--radio-state",
+            PathOf("server.radio-state"),
             "--area",
             area_,
             "--drones",
@@ -187,13 +195,13 @@ class ServeCommand : public CommandTest {
             "--duration-s",
             "80"};
   }
-  static std::vector<std::string> SimArgs(const std::string& device) {
+  std::vector<std::string> SimArgs(const std::string& device) const {
     // A fire in the middle of the area; a long link-lost timeout so the fleet
     // flies on while the server is restarted (vehicle timers run kSimSpeed times
     // faster than the wall clock).
     return {"sim",  "--count", "2",       "--launch", LatLonText(0, 0),   "--serial",
             device, "--speed", kSimSpeed, "--fire",   LatLonText(170, 0), "--link-lost-timeout-s",
-            "600"};
+            "600",  "--keys",  keys_};
   }
 
   // Reads `process`'s JSON lines until one has "event" == `event`; nullopt at the
@@ -227,8 +235,11 @@ class ServeCommand : public CommandTest {
   }
 
   std::string area_;
+  std::string keys_;
 };
 
+// The mission over the pty runs in secure mode (the default): every frame sealed
+// under the vehicles' keys from the key store.
 TEST_F(ServeCommand, ServerAndSimulatedFleetOnAPtyCompleteAMission) {
   PtyCable cable;
   FireswarmProcess sim(SimArgs(cable.fleet_end()));
@@ -245,6 +256,11 @@ TEST_F(ServeCommand, ServerAndSimulatedFleetOnAPtyCompleteAMission) {
   EXPECT_EQ(summary.value("resumed", true), false);
   EXPECT_GT(summary.at("frames_sent").value("mission_chunk", 0), 0);
   EXPECT_EQ(summary.at("radio").value("requests_failed", 1), 0);
+  EXPECT_EQ(summary.at("radio").value("secured", false), true);
+  EXPECT_EQ(summary.at("radio").value("refused_frames", 1), 0);
+  for (const Json& vehicle : summary.at("vehicles")) {
+    EXPECT_EQ(vehicle.value("radio_auth", ""), "ok") << summary.dump();
+  }
   // What went on LCM is in the log, for lcm-logplayer.
   EXPECT_GT(std::filesystem::file_size(lcm_log), 0U);
 
@@ -589,6 +605,11 @@ TEST_F(ServeCommand, BadFlagsExitTwoNamingTheFlag) {
            {serve + " --first-id 254" + link, {"--first-id"}},
            {serve + " --mode token" + link, {"--mode"}},
            {serve + " --checksum sum" + link, {"--checksum"}},
+           {serve + link, {"--keys"}},
+           {serve + " --keys " + PathOf("no_store") + " --radio-state " + PathOf("s") + link,
+            {"no_store"}},
+           {serve + " --keys " + keys_ + link, {"--journal", "--radio-state"}},
+           {serve + " --checksum crc16 --keys " + keys_ + link, {"--keys"}},
            {serve + " --launch 95,7" + link, {"--launch"}},
            {serve + " --launch 46.5,7.5 --launch 46.5" + link, {"--launch"}},
            {serve + " --launch 46.5,7.5 --launch-file sites.geojson" + link, {"--launch-file"}},
@@ -598,7 +619,8 @@ TEST_F(ServeCommand, BadFlagsExitTwoNamingTheFlag) {
            {serve + " --camera flir" + link, {"--camera"}},
            {serve + " --telemetry-hz 0" + link, {"--telemetry-hz"}},
            {serve + " --duration-s 0" + link, {"--duration-s"}},
-           {"serve --area " + PathOf("missing.geojson") + " --drones 2 --start" + link,
+           {"serve --area " + PathOf("missing.geojson") + " --drones 2 --start --checksum crc16" +
+                link,
             {"missing.geojson"}},
            {"sim" + link, {"--launch"}},
            {sim, {"--udp", "--serial"}},
@@ -606,10 +628,12 @@ TEST_F(ServeCommand, BadFlagsExitTwoNamingTheFlag) {
            {sim + " --count 0" + link, {"--count"}},
            {sim + " --count 2 --first-id 254" + link, {"--first-id"}},
            {sim + " --fire 1,2,3" + link, {"--fire"}},
-           {sim + " --fire 48,7.5" + link, {"--fire"}},
+           {sim + " --fire 48,7.5 --checksum crc16" + link, {"--fire"}},
            {sim + " --speed 0.5" + link, {"--speed"}},
            {sim + " --camera flir" + link, {"--camera"}},
            {sim + " --link-lost-timeout-s 1" + link, {"--link-lost-timeout-s"}},
+           {sim + link, {"--keys"}},
+           {sim + " --count 3 --keys " + keys_ + link, {"3.key"}},
        }) {
     const RunResult run = RunFireswarm(c.args);
     EXPECT_EQ(run.exit_code, 2) << c.args;
@@ -620,7 +644,7 @@ TEST_F(ServeCommand, BadFlagsExitTwoNamingTheFlag) {
 TEST(SimCommand, StopsAfterTheDurationWithOneSummaryForTheFleet) {
   const RunResult run = RunFireswarm(
       "sim --count 3 --first-id 5 --launch 46.5,7.5 --udp 127.0.0.1:0 127.0.0.1:9 --speed 20 "
-      "--duration-s 2");
+      "--duration-s 2 --checksum crc16");
   EXPECT_EQ(run.exit_code, 0);
   ASSERT_EQ(run.lines.size(), 1U);
   const Json summary = Json::parse(run.lines[0]);

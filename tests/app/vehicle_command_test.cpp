@@ -226,8 +226,8 @@ INSTANTIATE_TEST_SUITE_P(VehicleCommand, VehicleCommandFlight,
 
 // --duration-s ends the run by itself, with the summary, also when nobody talks.
 TEST(VehicleCommand, StopsAfterTheDurationWithASummary) {
-  const RunResult run =
-      RunFireswarm("vehicle --udp 127.0.0.1:0 127.0.0.1:9 --speed 20 --duration-s 2");
+  const RunResult run = RunFireswarm(
+      "vehicle --udp 127.0.0.1:0 127.0.0.1:9 --speed 20 --duration-s 2 --checksum crc16");
   EXPECT_EQ(run.exit_code, 0);
   ASSERT_EQ(run.lines.size(), 1U);
   const Json summary = Json::parse(run.lines[0]);
@@ -256,6 +256,8 @@ TEST(VehicleCommand, BadFlagsExitTwoNamingTheFlag) {
            {"vehicle --id 255" + udp, {"--id"}},
            {"vehicle --mode token" + udp, {"--mode"}},
            {"vehicle --checksum sum" + udp, {"--checksum"}},
+           {"vehicle" + udp, {"--param-file", "--keys"}},
+           {"vehicle --param-file /nonexistent/v.json" + udp, {"/nonexistent/v.json.key"}},
            {"vehicle --camera flir" + udp, {"--camera"}},
            {"vehicle --speed 0.5" + udp, {"--speed"}},
            {"vehicle --duration-s -1" + udp, {"--duration-s"}},

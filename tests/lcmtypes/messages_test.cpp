@@ -151,6 +151,10 @@ radio_stats_t Sample<radio_stats_t>() {
   m.vehicle_ids = {1, 2, 200};
   m.telemetry_age_s = {0.5, 1.75, 12.0};
   m.vehicle_count = static_cast<std::int16_t>(m.vehicle_ids.size());
+  m.secured = true;
+  m.out_of_turn = 80;
+  m.auth_failures = {0, 3, 0};
+  m.replays = {1, 0, 0};
   return m;
 }
 

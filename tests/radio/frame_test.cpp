@@ -22,9 +22,11 @@ TEST(Airtime, HundredBytesAt57600BaudTake17_36ms) {
 }
 
 TEST(ChecksumMode, NamesRoundTripAndUnknownNamesAreRejected) {
-  for (const ChecksumMode mode : {ChecksumMode::kXor, ChecksumMode::kCrc16}) {
+  for (const ChecksumMode mode :
+       {ChecksumMode::kXor, ChecksumMode::kCrc16, ChecksumMode::kSecure}) {
     EXPECT_EQ(ParseChecksumMode(ToString(mode)), mode);
   }
+  EXPECT_EQ(ToString(ChecksumMode::kSecure), "secure");
   EXPECT_EQ(ToString(ChecksumMode::kXor), "xor");
   EXPECT_EQ(ToString(ChecksumMode::kCrc16), "crc16");
   EXPECT_FALSE(ParseChecksumMode("CRC16").has_value());
@@ -34,7 +36,9 @@ TEST(ChecksumMode, NamesRoundTripAndUnknownNamesAreRejected) {
 TEST(FrameSize, HeaderDataAndChecksum) {
   EXPECT_EQ(FrameSize(0, ChecksumMode::kXor), 7U);
   EXPECT_EQ(FrameSize(0, ChecksumMode::kCrc16), 8U);
-  EXPECT_EQ(kMaxFrameSize, 263U);
+  EXPECT_EQ(FrameSize(kMaxDataSize, ChecksumMode::kCrc16), 263U);
+  EXPECT_EQ(FrameSize(0, ChecksumMode::kSecure), 21U);  // + key ID, counter (4), tag (8)
+  EXPECT_EQ(kMaxFrameSize, 276U);
 }
 
 TEST(Crc16, CcittFalseCheckValue) {
@@ -97,7 +101,7 @@ TEST(AppendFrame, ManyAppendsGrowTheBufferGeometrically) {
 TEST(AppendFrame, AcceptsMaximalDataAndRejectsLonger) {
   Bytes out;
   AppendFrame(out, 1, 2, Bytes(kMaxDataSize, 0xAB), ChecksumMode::kCrc16);
-  EXPECT_EQ(out.size(), kMaxFrameSize);
+  EXPECT_EQ(out.size(), FrameSize(kMaxDataSize, ChecksumMode::kCrc16));
   EXPECT_EQ(out[5], 255);
   out.clear();
   EXPECT_THROW(AppendFrame(out, 1, 2, Bytes(kMaxDataSize + 1), ChecksumMode::kCrc16),

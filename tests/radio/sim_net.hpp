@@ -11,6 +11,7 @@
 #include "fireswarm/radio/channel_loop.hpp"
 #include "fireswarm/radio/master_scheduler.hpp"
 #include "fireswarm/radio/vehicle_endpoint.hpp"
+#include "radio/secure_link.hpp"
 
 namespace fireswarm::radio::sim_test {
 
@@ -85,6 +86,11 @@ class SimNet {
       v.mode = config.mode;
       v.checksum = config.checksum;
       v.timing = config.timing;
+      if (config.checksum == ChecksumMode::kSecure) {
+        // Secure mode: vehicle i holds secure_test::TestKey(i) and the broadcast key.
+        disks_.push_back(std::make_unique<secure_test::Disk>());
+        v.security = secure_test::VehicleSecurity(v.id, *disks_.back());
+      }
       const auto index = static_cast<std::size_t>(i - 1);
       vehicles_.push_back(
           std::make_unique<SimVehicle>(v, index < handlers.size() ? handlers[index] : nullptr));
@@ -137,6 +143,7 @@ class SimNet {
     return bursts;
   }
 
+  std::vector<std::unique_ptr<secure_test::Disk>> disks_;
   MasterScheduler server_;
   ChannelLoop loop_;  // after server_, which its master step uses
   std::vector<std::unique_ptr<SimVehicle>> vehicles_;

@@ -90,8 +90,23 @@ TEST(UdpLink, ReceiveNeverBlocksAndWaitReadableKeepsItsDeadline) {
 TEST(UdpLink, OpenUdpLinkGivesAWorkingIoLink) {
   UdpLink peer("127.0.0.1:0", Loopback(9));
   const std::unique_ptr<IoLink> link = OpenUdpLink("127.0.0.1:0", Loopback(peer.local_port()));
+  peer.SetRemote(Loopback(dynamic_cast<UdpLink&>(*link).local_port()));
   link->Transmit(Nanos{0}, Nanos{0}, SeededBytes(5, 0));
   EXPECT_EQ(ReceiveFrom(peer, 5), SeededBytes(5, 0));
+}
+
+TEST(UdpLink, DatagramsFromAnyOtherPortAreDroppedAndCounted) {
+  LinkPair links;
+  UdpLink intruder("127.0.0.1:0", Loopback(links.b.local_port()));
+  for (int i = 0; i < 80; ++i) intruder.Transmit(Nanos{0}, Nanos{0}, SeededBytes(30, 7));
+  // The genuine peer's datagram, sent after the forgeries, is all that arrives.
+  const std::vector<std::uint8_t> genuine = SeededBytes(9, 1);
+  links.a.Transmit(Nanos{0}, Nanos{0}, genuine);
+  EXPECT_EQ(ReceiveFrom(links.b, genuine.size()), genuine);
+  std::vector<std::uint8_t> rest;
+  links.b.Receive(Nanos{0}, rest);
+  EXPECT_TRUE(rest.empty());
+  EXPECT_EQ(links.b.foreign_datagrams(), 80U);
 }
 
 TEST(UdpLink, OversizedBurstIsRejected) {

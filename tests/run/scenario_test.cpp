@@ -245,7 +245,8 @@ TEST(ParseScenario, DefaultsMatchThePlannerAndTheRadio) {
   EXPECT_EQ(s.radio.baud, channel.baud);
   EXPECT_DOUBLE_EQ(s.radio.turnaround_ms * 1e6, static_cast<double>(channel.turnaround.count()));
   EXPECT_DOUBLE_EQ(s.radio.loss, channel.loss);
-  EXPECT_EQ(s.radio.checksum, scheduler.checksum);
+  // Scenarios run secured by default (issue 17); the bare scheduler's default is crc16.
+  EXPECT_EQ(s.radio.checksum, radio::ChecksumMode::kSecure);
   EXPECT_EQ(s.radio.mode, scheduler.mode);
 
   EXPECT_TRUE(s.fires.empty());
@@ -479,7 +480,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"StandSpacingText", kArea + "fleet: {count: 2, stand_spacing_m: close}\n",
                  "fleet.stand_spacing_m", "must be a finite number, got close"},
         BadInput{"UnknownChecksum", Minimal("radio: {checksum: crc32}\n"), "radio.checksum",
-                 "must be one of xor|crc16, got crc32 (did you mean 'crc16'?)"},
+                 "must be one of xor|crc16|secure, got crc32 (did you mean 'crc16'?)"},
         BadInput{"UnknownMode", Minimal("radio: {mode: tdma}\n"), "radio.mode",
                  "must be one of poll|slots, got tdma"},
         BadInput{"BaudZero", Minimal("radio: {baud: 0}\n"), "radio.baud",
@@ -669,6 +670,8 @@ TEST(RepositoryScenarios, DemoLoadsWithFourDronesThreeFiresAndExpectations) {
   EXPECT_EQ(s.fires.size(), 3U);
   EXPECT_EQ(s.distractors.size(), 1U);
   EXPECT_GT(s.wind.speed_mps, 0.0);
+  // Flown secured (ctest scenario.demo runs it whole): issue 17.
+  EXPECT_EQ(s.radio.checksum, radio::ChecksumMode::kSecure);
   const double area_km2 = bg::area(s.area.area) / 1e6;
   EXPECT_GT(area_km2, 1.0);
   EXPECT_LT(area_km2, 5.0);

@@ -289,6 +289,8 @@ TEST(CommandCenter, MissionAndRadioAreCopiedWithNames) {
   radio.vehicle_ids = {3};
   radio.telemetry_age_s = {0.4};
   radio.vehicle_count = 1;
+  radio.auth_failures = {0};
+  radio.replays = {0};
   center.OnRadioStats(radio);
   const nlohmann::json state = center.State();
   EXPECT_EQ(state["mission"]["state"], "running");

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "fireswarm/common/time.hpp"
+#include "fireswarm/radio/parser.hpp"
 #include "fireswarm/server/journal_format.hpp"
 #include "server/fake_fleet.hpp"
 #include "server/server_fixture.hpp"
@@ -433,6 +434,49 @@ TEST(Server, OperatorCommandsAreCarriedOutOrRefusedWithAReason) {
   EXPECT_NEAR(retask->lat_deg, 46.001, 1e-7);
   EXPECT_DOUBLE_EQ(retask->radius_m, 80.0);
   EXPECT_NE(LastOf(air.vehicle(1), radio::CommandType::kReturnToLaunch), nullptr);
+}
+
+// Issue 17, turn discipline as a defence: 80 fire reports forged as vehicles 1 and
+// 2 (once enough for a confirmed track), each sent while the other vehicle held the
+// turn, never reach fusion.
+TEST(Server, ForgedFireReportsOutsideTheSendersTurnNeverReachFusion) {
+  ServerConfig config;
+  config.radio.mode = radio::LinkMode::kPoll;  // one vehicle's turn at a time
+  config.radio.checksum = radio::ChecksumMode::kCrc16;
+  Server server(config, kFrame);
+  server.AddVehicle(1);
+  server.AddVehicle(2);
+  Nanos t{0};
+  int forged_count = 0;
+  for (int cycle = 0; cycle < 200 && forged_count < 80; ++cycle) {
+    std::uint8_t granted = 0;
+    for (const radio::Burst& burst : server.Step(t, {})) {
+      radio::FrameParser parser(radio::ChecksumMode::kCrc16);
+      parser.Feed(burst.bytes, [&](const radio::FrameView& frame) {
+        if (frame.message_id == static_cast<std::uint8_t>(radio::MessageId::kPoll)) {
+          granted = frame.receiver;
+        }
+      });
+    }
+    if (const std::optional<radio::ExchangeTiming> exchange = server.scheduler().exchange()) {
+      if (granted == 1 || granted == 2) {
+        const auto sender = static_cast<std::uint8_t>(3 - granted);
+        radio::FireReport report = testing::ReportAt(150, 0, 0, 2'000U);
+        report.header = radio::MessageHeader{sender, static_cast<std::uint16_t>(forged_count)};
+        report.report_id = static_cast<std::uint16_t>(forged_count);
+        std::vector<std::uint8_t> forged;
+        radio::AppendMessageFrame(forged, radio::kServerId, report, radio::ChecksumMode::kCrc16);
+        server.Step(exchange->burst_end + std::chrono::milliseconds(1), forged);
+        ++forged_count;
+      }
+      t = std::max(t, exchange->deadline);
+    } else {
+      t = std::max(t + std::chrono::milliseconds(1), server.NextWakeup());
+    }
+  }
+  ASSERT_EQ(forged_count, 80);
+  EXPECT_TRUE(server.fusion().tracks().empty());
+  EXPECT_EQ(server.scheduler().stats().out_of_turn, 80U);
 }
 
 }  // namespace

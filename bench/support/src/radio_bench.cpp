@@ -20,6 +20,7 @@
 #include "fireswarm/radio/channel_loop.hpp"
 #include "fireswarm/radio/master_scheduler.hpp"
 #include "fireswarm/radio/mission_chunks.hpp"
+#include "fireswarm/radio/simulation_keys.hpp"
 
 namespace fireswarm::bench {
 
@@ -106,6 +107,11 @@ class Bench {
     s.checksum = config.checksum;
     s.timing = radio::LinkTiming{config.baud, radio::kBitsPerByte8N1, config.turnaround};
     s.default_telemetry_hz = config.telemetry_hz;
+    if (config.checksum == radio::ChecksumMode::kSecure) {
+      std::vector<std::uint8_t> ids;
+      for (int i = 1; i <= config.vehicles; ++i) ids.push_back(static_cast<std::uint8_t>(i));
+      s.security = radio::SimulationServerSecurity(config.seed, ids);
+    }
     return s;
   }
 
@@ -116,6 +122,9 @@ class Bench {
     e.mode = config.mode;
     e.checksum = config.checksum;
     e.timing = radio::LinkTiming{config.baud, radio::kBitsPerByte8N1, config.turnaround};
+    if (config.checksum == radio::ChecksumMode::kSecure) {
+      e.security = radio::SimulationVehicleSecurity(config.seed, id);
+    }
     return e;
   }
 

@@ -4,6 +4,10 @@
 // XOR mode: one byte, the XOR of those bytes (seed-compatible, seed 5.3.4.5).
 // CRC-16 mode: two bytes, little-endian, CRC-16/CCITT-FALSE (polynomial 0x1021,
 // initial value 0xFFFF, no reflection, no final XOR; check value 0x29B1 for "123456789").
+// Secure mode: the length byte counts the encrypted data; between length and data
+// sit a key ID and a 32-bit frame counter, after the data a 64-bit AES-256-GCM tag,
+// then the CRC-16 over everything from receiver ID to tag (secure_frame.hpp,
+// docs/protocol.md "Secure mode").
 #pragma once
 
 #include <array>
@@ -28,24 +32,36 @@ inline constexpr std::uint8_t kLastVehicleId = 254;
 inline constexpr std::size_t kHeaderSize = 6;
 inline constexpr std::size_t kMaxDataSize = 255;
 
-enum class ChecksumMode : std::uint8_t { kXor, kCrc16 };
+/// How a frame is protected: kXor and kCrc16 detect noise only; kSecure also
+/// authenticates every frame and encrypts its data (AES-256-GCM).
+enum class ChecksumMode : std::uint8_t { kXor, kCrc16, kSecure };
 
-/// Bytes of checksum after the data: 1 (XOR) or 2 (CRC-16).
+/// Secure mode: key ID (1 byte) and frame counter (4 bytes) after the length byte.
+inline constexpr std::size_t kSecureHeaderSize = 5;
+/// Secure mode: bytes of the GCM tag after the data (64 bits; docs/protocol.md says why).
+inline constexpr std::size_t kSecureTagSize = 8;
+
+/// Bytes of checksum after the data: 1 (XOR) or 2 (CRC-16; also closes a secure frame).
 constexpr std::size_t ChecksumSize(ChecksumMode mode) {
   return mode == ChecksumMode::kXor ? 1 : 2;
 }
 
-/// Bytes a frame with `data_size` data bytes occupies on the air.
-constexpr std::size_t FrameSize(std::size_t data_size, ChecksumMode mode) {
-  return kHeaderSize + data_size + ChecksumSize(mode);
+/// Bytes a mode adds to a frame besides header, data and checksum: 13 in secure mode.
+constexpr std::size_t SecurityOverhead(ChecksumMode mode) {
+  return mode == ChecksumMode::kSecure ? kSecureHeaderSize + kSecureTagSize : 0;
 }
 
-/// Largest frame on the air: 6 + 255 + 2 = 263 bytes.
-inline constexpr std::size_t kMaxFrameSize = FrameSize(kMaxDataSize, ChecksumMode::kCrc16);
+/// Bytes a frame with `data_size` data bytes occupies on the air.
+constexpr std::size_t FrameSize(std::size_t data_size, ChecksumMode mode) {
+  return kHeaderSize + data_size + SecurityOverhead(mode) + ChecksumSize(mode);
+}
 
-/// "xor" or "crc16".
+/// Largest frame on the air: 6 + 255 + 13 + 2 = 276 bytes (secure mode).
+inline constexpr std::size_t kMaxFrameSize = FrameSize(kMaxDataSize, ChecksumMode::kSecure);
+
+/// "xor", "crc16" or "secure".
 std::string_view ToString(ChecksumMode mode);
-/// Parses "xor" or "crc16"; nullopt for anything else.
+/// Parses "xor", "crc16" or "secure"; nullopt for anything else.
 std::optional<ChecksumMode> ParseChecksumMode(std::string_view text);
 
 /// XOR of every byte (seed 5.3.4.5).
@@ -59,13 +75,16 @@ struct FrameView {
   std::uint8_t receiver = 0;
   std::uint8_t message_id = 0;
   std::span<const std::uint8_t> data;
+  /// Secure mode only: the frame from receiver ID through the tag (what
+  /// OpenSecureFrame() authenticates); `data` is then the still encrypted data.
+  std::span<const std::uint8_t> sealed;
   /// Stream position of the frame's first preamble byte, in bytes fed since the
   /// parser's construction or Reset().
   std::uint64_t offset = 0;
 };
 
-/// Appends one encoded frame to `out`.
-/// Throws std::invalid_argument when `data` is longer than 255 bytes.
+/// Appends one encoded xor or crc16 frame to `out` (secure frames: AppendSecureFrame).
+/// Throws std::invalid_argument when `data` is longer than 255 bytes or `mode` is kSecure.
 void AppendFrame(std::vector<std::uint8_t>& out, std::uint8_t receiver, std::uint8_t message_id,
                  std::span<const std::uint8_t> data, ChecksumMode mode);
 

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "fireswarm/radio/discipline.hpp"
+#include "fireswarm/radio/frame_security.hpp"
 #include "fireswarm/radio/messages.hpp"
 #include "fireswarm/radio/parser.hpp"
 #include "fireswarm/radio/time.hpp"
@@ -33,6 +34,9 @@ struct SchedulerState;  // radio/src/scheduler_state.hpp
 struct SchedulerConfig {
   LinkMode mode = LinkMode::kSlots;
   ChecksumMode checksum = ChecksumMode::kCrc16;
+  /// Secure mode: the server's keys (one per vehicle, the broadcast key), counter and
+  /// replay windows (self_id == kServerId). Required when checksum is kSecure.
+  std::shared_ptr<FrameSecurity> security;
   LinkTiming timing;
   /// Slots mode: idle time between consecutive slots (wire: whole microseconds).
   Nanos slot_guard{std::chrono::microseconds(500)};
@@ -133,6 +137,16 @@ struct SchedulerStats {
   std::uint64_t payload_bytes = 0;  ///< data bytes of frames addressed to the server
   std::uint64_t decode_errors = 0;
   std::uint64_t unknown_senders = 0;
+  /// Frames from a vehicle that had no turn in the current exchange: dropped (turn
+  /// discipline as a defence: a forger must also hit the right slot).
+  std::uint64_t out_of_turn = 0;
+  /// Secure mode: frames to the server refused (bad tag, replay, no key, or a
+  /// payload whose sender is not the vehicle whose key sealed it); counted per
+  /// vehicle in the FrameSecurity's stats.
+  std::uint64_t refused_frames = 0;
+  /// Secure mode: frames not sent because they could not be sealed (no key for the
+  /// vehicle, counter range not persisted).
+  std::uint64_t seal_failures = 0;
 };
 
 /// The current exchange: one burst and the window its replies may arrive in.

@@ -31,10 +31,13 @@ class UdpLink final : public IoLink {
   /// Throws std::invalid_argument above kMaxBurstBytes, std::runtime_error naming
   /// the remote when the send fails.
   void Transmit(Nanos now, Nanos start, std::span<const std::uint8_t> bytes) override;
-  /// Appends the bytes of every datagram received so far, in arrival order.
+  /// Appends the bytes of every datagram received so far from the remote, in arrival
+  /// order; datagrams from any other address or port are dropped (foreign_datagrams()).
   void Receive(Nanos now, std::vector<std::uint8_t>& out) override;
   bool WaitReadable(Nanos timeout) override;
 
+  /// Datagrams dropped because they did not come from the remote.
+  std::uint64_t foreign_datagrams() const;
   /// The port the socket is bound to (the ephemeral one when `local` asked for 0).
   std::uint16_t local_port() const;
   /// Sends further bursts to `remote` ("host:port"); throws as the constructor.

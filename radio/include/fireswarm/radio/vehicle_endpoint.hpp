@@ -7,11 +7,13 @@
 #include <cstddef>
 #include <cstdint>
 #include <deque>
+#include <memory>
 #include <optional>
 #include <span>
 #include <vector>
 
 #include "fireswarm/radio/discipline.hpp"
+#include "fireswarm/radio/frame_security.hpp"
 #include "fireswarm/radio/messages.hpp"
 #include "fireswarm/radio/parser.hpp"
 #include "fireswarm/radio/time.hpp"
@@ -37,6 +39,9 @@ struct VehicleEndpointConfig {
   /// kSlots: the answer waits for a kAck slot. Must match the server's mode.
   LinkMode mode = LinkMode::kSlots;
   ChecksumMode checksum = ChecksumMode::kCrc16;
+  /// Secure mode: this vehicle's keys, counter and replay windows (self_id == id).
+  /// Required when checksum is kSecure; shared so the owner can persist and inspect it.
+  std::shared_ptr<FrameSecurity> security;
   LinkTiming timing;
   /// Unacknowledged fire reports kept; beyond it the oldest is dropped (counted).
   std::size_t max_queued_reports = 256;
@@ -49,9 +54,13 @@ struct VehicleEndpointStats {
   std::uint64_t broadcast_frames = 0;      ///< valid frames addressed to 255
   std::uint64_t payload_bytes_for_me = 0;  ///< data bytes of frames addressed to this vehicle
   std::uint64_t decode_errors = 0;         ///< frames for me whose payload did not decode
-  std::uint64_t replies_sent = 0;          ///< frames transmitted
-  std::uint64_t requests_handled = 0;      ///< requests passed to the handler
-  std::uint64_t duplicate_requests = 0;    ///< retries answered from the cached ack
+  /// Secure mode: frames for me refused (bad tag, replay, no key); not handled.
+  std::uint64_t refused_frames = 0;
+  /// Secure mode: replies not sent because they could not be sealed.
+  std::uint64_t seal_failures = 0;
+  std::uint64_t replies_sent = 0;        ///< frames transmitted
+  std::uint64_t requests_handled = 0;    ///< requests passed to the handler
+  std::uint64_t duplicate_requests = 0;  ///< retries answered from the cached ack
   std::uint64_t reports_queued = 0;
   std::uint64_t reports_acked = 0;
   std::uint64_t reports_dropped = 0;  ///< overflowed max_queued_reports
@@ -111,6 +120,7 @@ class VehicleEndpoint {
   VehicleEndpointConfig config_;
   VehicleRequestHandler& handler_;
   FrameParser parser_;
+  std::vector<std::uint8_t> opened_;  // secure mode: the decrypted data of the current frame
   Telemetry telemetry_;
   std::deque<FireReport> reports_;  // oldest first, unacknowledged
   std::uint16_t next_report_id_ = 0;

@@ -117,7 +117,9 @@ struct RadioConfig {
   int baud = 57'600;           ///< bits/s, 8N1 framing
   double turnaround_ms = 5.0;  ///< receive-to-transmit switch time of every radio
   double loss = 0.0;           ///< probability a transmission is lost for one receiver
-  radio::ChecksumMode checksum = radio::ChecksumMode::kCrc16;
+  /// secure (default): AES-256-GCM under simulation keys derived from the seed
+  /// (radio/simulation_keys.hpp); xor and crc16 as on the seed's board.
+  radio::ChecksumMode checksum = radio::ChecksumMode::kSecure;
   radio::LinkMode mode = radio::LinkMode::kSlots;
 };
 
