@@ -176,6 +176,12 @@ server::ServerConfig ServerConfigFor(const Flags& f, const planner::SearchArea& 
       throw UsageError(std::string("fireswarm serve: --keys: ") + e.what());
     }
   }
+  if (!f.start && config.operators.empty()) {
+    throw UsageError("fireswarm serve: without --start, --keys DIR needs an operator key in " +
+                     f.link.keys +
+                     "/operators/ (fireswarm keys add-operator): an unsigned START is refused, "
+                     "so the mission would never start");
+  }
   return config;
 }
 

@@ -10,12 +10,19 @@ namespace fireswarm::server {
 std::map<std::string, common::SecretKey> LoadOperatorKeys(const std::filesystem::path& key_store) {
   const std::filesystem::path dir = key_store / kOperatorKeysDir;
   std::error_code error;
+  std::map<std::string, common::SecretKey> keys;
+  if (!std::filesystem::is_directory(key_store, error)) {
+    throw std::runtime_error(key_store.string() +
+                             ": no key store (create one with `fireswarm keys init DIR`)");
+  }
+  // A store may hold vehicle keys only (a mission started with --start): no
+  // operators, so every command is refused (the caller says so).
+  if (!std::filesystem::exists(dir, error)) return keys;
   if (!std::filesystem::is_directory(dir, error)) {
     throw std::runtime_error(dir.string() +
-                             ": no operator key directory (create keys with `fireswarm keys "
-                             "operator NAME`)");
+                             ": not a directory (create operator keys with "
+                             "`fireswarm keys add-operator`)");
   }
-  std::map<std::string, common::SecretKey> keys;
   for (const std::filesystem::directory_entry& entry :
        std::filesystem::directory_iterator(dir, error)) {
     const std::filesystem::path& path = entry.path();
@@ -28,7 +35,6 @@ std::map<std::string, common::SecretKey> LoadOperatorKeys(const std::filesystem:
     keys.emplace(id, common::ReadSecretKeyFile(path));
   }
   if (error) throw std::runtime_error(dir.string() + ": cannot list: " + error.message());
-  if (keys.empty()) throw std::runtime_error(dir.string() + ": holds no <operator>.key file");
   return keys;
 }
 

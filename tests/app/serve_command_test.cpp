@@ -337,11 +337,11 @@ TEST_F(ServeCommand, ServerKilledMidMissionResumesFromItsJournal) {
   EXPECT_EQ(sim.Finish(Clock::now() + kExitDeadline).exit_code, 0);
 }
 
-// The operator "ann" of a key store made for a test: the store's directory.
-std::string AnnsKeyStore(const std::string& dir, const common::SecretKey& key) {
+// Makes `key` the key of operator "ann" in the key store `dir` (the fixture's,
+// which serve already takes with --keys for the vehicles).
+void AddAnn(const std::string& dir, const common::SecretKey& key) {
   std::filesystem::create_directories(dir + "/operators");
   common::WriteSecretKeyFile(dir + "/operators/ann.key", key);
-  return dir;
 }
 
 std::int64_t UnixMicrosNow() {
@@ -365,7 +365,8 @@ TEST_F(ServeCommand, WaitsForAnOperatorStartOnLcm) {
   FireswarmProcess sim(SimArgs(cable.fleet_end()));
   std::vector<std::string> serve_args = ServeArgs(cable.server_end());
   std::erase(serve_args, "--start");
-  serve_args.insert(serve_args.end(), {"--lcm", url, "--keys", AnnsKeyStore(PathOf("keys"), key)});
+  AddAnn(keys_, key);
+  serve_args.insert(serve_args.end(), {"--lcm", url});
   FireswarmProcess serve(serve_args);
 
   // Sends what `make` gives again until the server answers one: it may not be
@@ -483,8 +484,8 @@ TEST_F(ServeCommand, TheCommandCenterShowsTheLinkAndStartsTheMission) {
   std::ofstream(token) << "page-operator\n";
   ::chmod(token.c_str(), 0600);
   const common::SecretKey key = common::GenerateSecretKey();
-  serve_args.insert(serve_args.end(), {"--http", "127.0.0.1:0", "--operator-token-file", token,
-                                       "--keys", AnnsKeyStore(PathOf("keys"), key)});
+  AddAnn(keys_, key);
+  serve_args.insert(serve_args.end(), {"--http", "127.0.0.1:0", "--operator-token-file", token});
   FireswarmProcess serve(serve_args);
   const std::optional<std::uint16_t> port = serve.ReadListeningPort(Clock::now() + kStartDeadline);
   ASSERT_TRUE(port) << "no listening line";
@@ -551,7 +552,8 @@ TEST_F(ServeCommand, PlansFromSeveralLaunchSitesInSorties) {
   const std::string west = LatLonText(0, 0);
   const std::string east = LatLonText(340, 0);
   const std::string base = "serve --area " + area_ +
-                           " --drones 2 --udp 127.0.0.1:0 127.0.0.1:9 --start --duration-s 0.2 ";
+                           " --drones 2 --udp 127.0.0.1:0 127.0.0.1:9 --checksum crc16 --start "
+                           "--duration-s 0.2 ";
   const auto planned = [](const RunResult& run) {
     for (const std::string& line : run.lines) {
       const Json j = Json::parse(line, nullptr, false);
@@ -601,7 +603,8 @@ TEST_F(ServeCommand, BadFlagsExitTwoNamingTheFlag) {
            {"serve --area " + area_ + " --drones 0 --start" + link, {"--drones"}},
            {"serve --area " + area_ + " --drones 2" + link, {"--start", "--lcm"}},
            {"serve --area " + area_ + " --drones 2 --lcm memq://" + link, {"--keys"}},
-           {serve + " --keys " + PathOf("no-store") + link, {"--keys", "no-store/operators"}},
+           {serve + " --checksum crc16 --keys " + PathOf("no-store") + link,
+            {"--keys", "no-store"}},
            {serve + " --first-id 254" + link, {"--first-id"}},
            {serve + " --mode token" + link, {"--mode"}},
            {serve + " --checksum sum" + link, {"--checksum"}},
@@ -609,7 +612,9 @@ TEST_F(ServeCommand, BadFlagsExitTwoNamingTheFlag) {
            {serve + " --keys " + PathOf("no_store") + " --radio-state " + PathOf("s") + link,
             {"no_store"}},
            {serve + " --keys " + keys_ + link, {"--journal", "--radio-state"}},
-           {serve + " --checksum crc16 --keys " + keys_ + link, {"--keys"}},
+           {"serve --area " + area_ + " --drones 2 --lcm memq:// --checksum crc16 --keys " + keys_ +
+                link,
+            {"--keys", "operators"}},
            {serve + " --launch 95,7" + link, {"--launch"}},
            {serve + " --launch 46.5,7.5 --launch 46.5" + link, {"--launch"}},
            {serve + " --launch 46.5,7.5 --launch-file sites.geojson" + link, {"--launch-file"}},

@@ -15,10 +15,11 @@ namespace fireswarm::server {
 /// The key store's sub-directory of operator keys.
 inline constexpr const char* kOperatorKeysDir = "operators";
 
-/// Every `<id>.key` in `key_store`/operators (other files are ignored), ID -> key.
-/// Throws std::runtime_error naming the path when the directory is missing or
-/// holds no key, a key file is unreadable, open to others or malformed, or its
-/// name is not a valid operator ID (command_auth.hpp's IsValidOperatorId).
+/// Every `<id>.key` in `key_store`/operators (other files are ignored), ID -> key;
+/// empty when the store has no operators (it may hold vehicle keys only). Throws
+/// std::runtime_error naming the path when the store is missing, a key file is
+/// unreadable, open to others or malformed, or its name is not a valid operator
+/// ID (command_auth.hpp's IsValidOperatorId).
 std::map<std::string, common::SecretKey> LoadOperatorKeys(const std::filesystem::path& key_store);
 
 }  // namespace fireswarm::server
