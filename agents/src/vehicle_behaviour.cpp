@@ -250,6 +250,8 @@ radio::CommandResult Vehicle::OnCommand(const radio::Command& command) {
         return CommandResult::kAccepted;
       }
       return accept(FlightMode::kLand);
+    case CommandType::kAvoid:
+      break;  // not yet flown: unsupported
   }
   ++stats_.commands_rejected;
   return CommandResult::kUnsupported;

@@ -103,21 +103,31 @@ double MasterScheduler::TelemetryRateHz(std::uint8_t vehicle) const {
 
 namespace {
 
-RequestId Enqueue(SchedulerState& state, std::uint8_t vehicle, Message request) {
+RequestId Enqueue(SchedulerState& state, std::uint8_t vehicle, Message request,
+                  bool urgent = false) {
   const auto found = state.vehicles.find(vehicle);
   if (found == state.vehicles.end()) {
     throw std::invalid_argument("request for unknown vehicle " + std::to_string(vehicle));
   }
   const RequestId id = state.next_request_id++;
   std::visit([](auto& payload) { payload.header = MessageHeader{kServerId, 0}; }, request);
-  found->second.requests.push_back(internal::PendingRequest{id, std::move(request), false, 0});
+  std::deque<internal::PendingRequest>& queue = found->second.requests;
+  internal::PendingRequest pending{id, std::move(request), false, 0, urgent};
+  if (!urgent) {
+    queue.push_back(std::move(pending));
+    return id;
+  }
+  // Behind the one in flight and the urgent ones already queued.
+  auto at = queue.begin();
+  while (at != queue.end() && (at->sent || at->urgent)) ++at;
+  queue.insert(at, std::move(pending));
   return id;
 }
 
 }  // namespace
 
-RequestId MasterScheduler::SendCommand(std::uint8_t vehicle, const Command& command) {
-  return Enqueue(*state_, vehicle, command);
+RequestId MasterScheduler::SendCommand(std::uint8_t vehicle, const Command& command, bool urgent) {
+  return Enqueue(*state_, vehicle, command, urgent);
 }
 
 RequestId MasterScheduler::SendMissionChunk(std::uint8_t vehicle, const MissionChunk& chunk) {

@@ -68,6 +68,8 @@ std::string_view ToString(CommandType type) {
       return "investigate";
     case CommandType::kAbort:
       return "abort";
+    case CommandType::kAvoid:
+      return "avoid";
   }
   return "unknown";
 }

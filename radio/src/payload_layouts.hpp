@@ -116,7 +116,7 @@ constexpr void Layout(Io& io, MessageOf<MissionAck> auto& m) {
 template <typename Io>
 constexpr void Layout(Io& io, MessageOf<Command> auto& m) {
   io.Header(m.header);
-  io.EnumValue(m.type, CommandType::kStartMission, CommandType::kAbort);
+  io.EnumValue(m.type, CommandType::kStartMission, CommandType::kAvoid);
   io.Integer(m.mission_id);
   io.Fixed(m.lat_deg, kE7PerDegree, kI32);
   io.Fixed(m.lon_deg, kE7PerDegree, kI32);
@@ -129,7 +129,7 @@ template <typename Io>
 constexpr void Layout(Io& io, MessageOf<CommandAck> auto& m) {
   io.Header(m.header);
   io.Integer(m.acked_sequence);
-  io.EnumValue(m.type, CommandType::kStartMission, CommandType::kAbort);
+  io.EnumValue(m.type, CommandType::kStartMission, CommandType::kAvoid);
   io.EnumValue(m.result, CommandResult::kAccepted, CommandResult::kUnsupported);
 }
 

@@ -99,8 +99,10 @@ std::vector<VehicleState*> RequestCandidates(SchedulerState& state) {
   for (auto& [id, v] : state.vehicles) {
     if (!v.requests.empty()) out.push_back(&v);
   }
+  // Urgent ones first (a conflict's resolution), then round robin.
   std::sort(out.begin(), out.end(), [](const VehicleState* a, const VehicleState* b) {
-    return std::tie(a->last_request_turn, a->id) < std::tie(b->last_request_turn, b->id);
+    return std::tuple(!a->requests.front().urgent, a->last_request_turn, a->id) <
+           std::tuple(!b->requests.front().urgent, b->last_request_turn, b->id);
   });
   return out;
 }
@@ -136,6 +138,9 @@ struct PollTurn {
 // One turn by priority. A request turn is followed by a due telemetry turn (when
 // request_share > 0) so that a bulk upload does not blind the server to the fleet.
 PollTurn ChoosePollTurn(SchedulerState& state, Nanos now) {
+  for (VehicleState* v : RequestCandidates(state)) {
+    if (v->requests.front().urgent) return {TurnKind::kRequest, v};
+  }
   if (const auto reports = ReportCandidates(state); !reports.empty()) {
     return {TurnKind::kReport, reports.front()};
   }
@@ -222,17 +227,25 @@ void AddReportSlots(SchedulerState& state, SlotsCycle& cycle, Nanos now) {
   }
 }
 
+// Urgent requests take their slots first and outside request_share; `urgent_only`
+// adds only those, a later call the others.
 void AddRequestSlots(SchedulerState& state, SlotsCycle& cycle, std::vector<std::uint8_t>& out,
-                     Nanos now) {
+                     Nanos now, bool urgent_only) {
   const auto share = Nanos{static_cast<std::int64_t>(
       state.config.request_share * static_cast<double>(state.config.max_cycle_airtime.count()))};
   Nanos used{0};  // request frames and their ack slots
   bool any = false;
   for (VehicleState* v : RequestCandidates(state)) {
+    const bool urgent = v->requests.front().urgent;
+    if (urgent_only && !urgent) return;  // the urgent ones come first
+    const bool in_cycle = std::any_of(cycle.slots.begin(), cycle.slots.end(), [&](const Slot& s) {
+      return s.receiver == v->id && s.reply == ReplyKind::kAck;
+    });
+    if (in_cycle) continue;
     const std::vector<std::uint8_t> frame = RequestFrame(state, *v);
     const std::size_t ack_bytes = FrameBytes(state, *AckIdFor(IdOf(v->requests.front().message)));
     const Nanos cost = AirtimeOf(state, frame.size() + ack_bytes) + state.config.slot_guard;
-    if (any && used + cost > share) return;
+    if (!urgent && any && used + cost > share) return;
     if (!cycle.Fits(ack_bytes, frame.size())) return;
     out.insert(out.end(), frame.begin(), frame.end());
     MarkRequestSent(state, *v, now);
@@ -246,8 +259,9 @@ std::optional<Burst> PlanSlots(SchedulerState& state, Nanos now) {
   Burst burst{now + state.config.timing.turnaround, {}};
   AppendOwedAcks(state, burst.bytes);
   SlotsCycle cycle{state, burst.bytes.size(), {}, Nanos{0}};
+  AddRequestSlots(state, cycle, burst.bytes, now, true);
   AddReportSlots(state, cycle, now);
-  AddRequestSlots(state, cycle, burst.bytes, now);
+  AddRequestSlots(state, cycle, burst.bytes, now, false);
   // Vehicles due soon fill the cycle now rather than open one of their own later.
   const std::size_t telemetry_bytes = FrameBytes(state, MessageId::kTelemetry);
   for (const VehicleState* v : TelemetryCandidates(state, now, true)) {

@@ -20,6 +20,7 @@ struct PendingRequest {
   Message message;  // header.sequence is set when first sent, kept on resends
   bool sent = false;
   int retries = 0;
+  bool urgent = false;  // goes before every report and every other request
 };
 
 struct VehicleState {

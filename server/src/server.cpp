@@ -60,6 +60,7 @@ InvestigationsConfig InvestigationsConfigOf(const ServerConfig& config) {
 void ServerConfig::Validate() const {
   radio.Validate();
   fusion.Validate();
+  separation.Validate();
   if (!(telemetry_hz > 0.0) || !std::isfinite(telemetry_hz)) {
     throw std::invalid_argument("telemetry_hz must be a positive number");
   }
@@ -117,6 +118,7 @@ Server::Server(const ServerConfig& config, const common::LocalFrame& frame)
       registry_(config.link),
       fusion_(config.fusion),
       investigations_(InvestigationsConfigOf(config_), frame_, transit_.get()),
+      traffic_(config_.separation),
       verifier_(config_.operators, config_.command_window_us) {
   if (!config_.area.empty()) coverage_.emplace(config_.area, config_.no_fly);
 }

@@ -182,7 +182,10 @@ class MasterScheduler {
   /// Queue a request for `vehicle`; the scheduler sets the header. Requests to one
   /// vehicle go one at a time, in order. Throws std::invalid_argument for an unknown
   /// vehicle (or, for a chunk, more than kMaxWaypointsPerChunk waypoints).
-  RequestId SendCommand(std::uint8_t vehicle, const Command& command);
+  /// An urgent command (a conflict's resolution) goes before the vehicle's other
+  /// queued requests (after the one in flight, which keeps its sequence number)
+  /// and takes the next turn before fire reports and other vehicles' requests.
+  RequestId SendCommand(std::uint8_t vehicle, const Command& command, bool urgent = false);
   RequestId SendMissionChunk(std::uint8_t vehicle, const MissionChunk& chunk);
   RequestId ReadParam(std::uint8_t vehicle, std::uint16_t param_id);
   RequestId WriteParam(std::uint8_t vehicle, std::uint16_t param_id, float value);

@@ -208,9 +208,14 @@ enum class CommandType : std::uint8_t {
   kLand = 5,
   kInvestigate = 6,  ///< loiter around (lat, lon) at radius, keeping the camera on it
   kAbort = 7,
+  /// Fly at altitude_m (above launch ground) for duration_s, horizontally as
+  /// before: the server's tactical resolution of a predicted conflict (a climb, a
+  /// descent, or "stay at this altitude", which holds a take-off, a landing or a
+  /// climb where it is). altitude_m 0 ends an earlier one; duration_s 0 is refused.
+  kAvoid = 8,
 };
 /// "start_mission", "hold", "resume", "return_to_launch", "land", "investigate",
-/// "abort"; "unknown" outside the enum.
+/// "abort", "avoid"; "unknown" outside the enum.
 std::string_view ToString(CommandType type);
 
 struct Command {
@@ -219,9 +224,9 @@ struct Command {
   std::uint16_t mission_id = 0;  ///< for kStartMission
   double lat_deg = 0.0;          ///< for kInvestigate; wire: i32 1e-7 deg
   double lon_deg = 0.0;
-  double altitude_m = 0.0;       ///< wire: u16 dm
+  double altitude_m = 0.0;       ///< for kInvestigate, kAvoid; wire: u16 dm
   double radius_m = 0.0;         ///< wire: u16 dm
-  std::uint16_t duration_s = 0;  ///< loiter time; 0 = until told otherwise
+  std::uint16_t duration_s = 0;  ///< loiter (avoid) time; 0 = until told otherwise
   friend bool operator==(const Command&, const Command&) = default;
 };
 

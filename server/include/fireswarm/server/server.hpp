@@ -71,6 +71,7 @@
 #include "fireswarm/server/mission_manager.hpp"
 #include "fireswarm/server/mission_state.hpp"
 #include "fireswarm/server/operator_command.hpp"
+#include "fireswarm/server/traffic.hpp"
 #include "fireswarm/server/vehicle_registry.hpp"
 
 namespace fireswarm::server {
@@ -132,6 +133,9 @@ struct ServerConfig {
   std::map<std::string, common::SecretKey> operators;
   /// HandleSigned's window around the server's LCM clock, microseconds (> 0).
   std::int64_t command_window_us = kDefaultCommandWindowUs;
+  /// Separation: the altitude layers LoadMission gives the missions and the
+  /// tactical watch over the fleet (traffic.hpp).
+  SeparationConfig separation;
   /// Throws std::invalid_argument naming the field (`camera` missing with an
   /// `area`, a camera field or camera_pitch_deg out of range).
   void Validate() const;
@@ -214,6 +218,8 @@ class Server {
   /// Drones given up as lost whose lanes went to others -> true once heard again
   /// (and ordered home).
   const std::map<std::uint8_t, bool>& handed_over() const { return handed_over_; }
+  /// The tactical watch: predicted conflicts, their resolutions and outcomes.
+  const TrafficControl& traffic() const { return traffic_; }
   /// Commands refused unread or unauthenticated since this server started, per
   /// CommandVerdict (index kAccepted stays 0).
   const std::array<std::uint64_t, 6>& command_refusals() const { return command_refusals_; }
@@ -266,6 +272,7 @@ class Server {
   Investigations investigations_;  // holds transit_.get(): declared after it
   std::optional<MissionManager> mission_;
   std::optional<planner::CoverageGrid> coverage_;  // with ServerConfig::area only
+  TrafficControl traffic_;
   MissionState state_ = MissionState::kIdle;
   double mission_started_s_ = 0.0;
   // Drones given up as lost whose lanes went to others -> ordered home since

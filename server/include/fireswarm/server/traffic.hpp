@@ -1,0 +1,164 @@
+// Keeping the drones apart: the separation rules every drone flies by, and the
+// server's tactical resolution of the conflicts its telemetry still predicts.
+//
+// Strategic (airspace.hpp) gives each drone altitude layers before it flies.
+// Tactical (TrafficControl, here) watches the fleet from telemetry: from each
+// drone's reported position and velocity it predicts every pair's closest
+// approach over `horizon_s`, and when that falls under `separation_m` it orders
+// one drone of the pair to another altitude (radio CommandType::kAvoid) for as
+// long as the encounter lasts. The order goes out urgent on the shared channel;
+// the horizon covers the telemetry's age, the order's wait for its turn and the
+// climb itself (docs/separation.md has the budget).
+//
+// A lost drone (no telemetry for the registry's lost time) flies home by itself
+// at its return layer (agents' return to launch); the server predicts that way
+// home and keeps the others off it.
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace fireswarm::server {
+
+/// The separation rules (scenario key `separation`, docs/scenario.md).
+struct SeparationConfig {
+  /// No two airborne drones closer than this, m (3-D distance).
+  double separation_m = 10.0;
+  /// Vertical spacing of the altitude layers, m: more than separation_m, as a
+  /// drone's altitude hold wanders about +-2 m around its target.
+  double layer_m = 15.0;
+  /// Search altitudes: the fleet's altitude plus layer_m * (k % search_layers).
+  int search_layers = 3;
+  /// Transit layers above the search layers: one per heading sector of
+  /// 360 / transit_sectors degrees, so head-on traffic never shares a layer.
+  int transit_sectors = 4;
+  /// A leg that is not a search lane and at least this long is a transit, m.
+  double transit_min_m = 200.0;
+  /// How far ahead the tactical watch predicts closest approaches, s.
+  double horizon_s = 30.0;
+  /// Tactical resolution on (false: conflicts are still predicted and counted,
+  /// no order is sent: the benchmark's "without resolution").
+  bool resolve = true;
+  /// Strategic layers on (false: every drone at the fleet's altitude).
+  bool layers = true;
+  /// Resolutions never send a drone above this or below min_altitude_m, m.
+  double max_altitude_m = 300.0;
+  double min_altitude_m = 30.0;
+  /// Throws std::invalid_argument naming the field.
+  void Validate() const;
+};
+
+/// What one drone's telemetry says, in the server's local frame.
+struct TrafficSample {
+  Eigen::Vector3d position_m = Eigen::Vector3d::Zero();  ///< east, north, up
+  Eigen::Vector3d velocity_mps = Eigen::Vector3d::Zero();
+  double at_s = 0.0;  ///< mission time the sample describes
+};
+
+enum class Resolution : std::uint8_t {
+  kNone = 0,     ///< predicted and watched, no order (resolve off, or nothing helps)
+  kClimb = 1,    ///< the mover climbs to target_altitude_m
+  kDescend = 2,  ///< the mover descends to target_altitude_m
+  kLevel = 3,    ///< the mover stays at target_altitude_m (a take-off, a landing waits)
+};
+/// "none", "climb", "descend", "level".
+const char* ToString(Resolution resolution);
+
+enum class ConflictOutcome : std::uint8_t {
+  kOpen = 0,            ///< still ahead or under way
+  kResolved = 1,        ///< passed, never closer than separation_m as reported
+  kLostSeparation = 2,  ///< passed, reported closer than separation_m
+};
+/// "open", "resolved", "lost_separation".
+const char* ToString(ConflictOutcome outcome);
+
+/// One predicted conflict between two drones, from detection to its outcome.
+struct Conflict {
+  std::int32_t id = 0;  ///< 1, 2, ... in detection order
+  int vehicle_a = 0;    ///< the lower receiver ID
+  int vehicle_b = 0;
+  double detected_s = 0.0;              ///< mission time
+  double predicted_separation_m = 0.0;  ///< at the closest approach, as first predicted
+  double time_to_closest_s = 0.0;       ///< from detection
+  Resolution resolution = Resolution::kNone;
+  int mover = 0;  ///< the drone ordered (0: none)
+  double target_altitude_m = 0.0;
+  double order_s = 0.0;  ///< how long the order holds, s
+  ConflictOutcome outcome = ConflictOutcome::kOpen;
+  /// The closest the pair came as their telemetry reported it, since detection, m.
+  double observed_min_separation_m = 0.0;
+  double closed_s = 0.0;      ///< mission time of the outcome (0 while open)
+  std::uint64_t version = 0;  ///< TrafficControl::version() when it last changed
+};
+
+/// An order to send: vehicle flies at altitude_m for duration_s (kAvoid).
+struct AvoidOrder {
+  int vehicle = 0;
+  double altitude_m = 0.0;
+  double duration_s = 0.0;
+  std::int32_t conflict_id = 0;
+};
+
+/// Counts for the report and radio_stats-like summaries.
+struct TrafficCounts {
+  std::uint64_t conflicts = 0;  ///< predicted
+  std::uint64_t orders = 0;     ///< avoid orders handed to the radio
+  std::uint64_t resolved = 0;
+  std::uint64_t lost_separation = 0;
+};
+
+class TrafficControl {
+ public:
+  /// Throws std::invalid_argument as SeparationConfig::Validate.
+  explicit TrafficControl(const SeparationConfig& config);
+
+  /// A drone's telemetry while it flies.
+  void Observe(int vehicle, const TrafficSample& sample);
+  /// The drone is on the ground (or gone): no longer traffic.
+  void Forget(int vehicle);
+  /// The drone is lost: from `last` it flies home to `home_m` (east, north) at
+  /// `altitude_m` and `speed_mps` and lands there; the others are kept off that
+  /// way until `until_s`.
+  void ExpectLost(int vehicle, const TrafficSample& last, const Eigen::Vector2d& home_m,
+                  double altitude_m, double speed_mps, double until_s);
+  /// The altitude a drone flies when no order holds it, for the predictions of
+  /// a drone that is about to change layers (its next waypoint's), m.
+  void SetIntent(int vehicle, std::optional<double> altitude_m);
+
+  /// Predicts, opens and closes conflicts at `now_s`; the orders to send now.
+  std::vector<AvoidOrder> Step(double now_s);
+
+  const std::vector<Conflict>& conflicts() const { return conflicts_; }
+  /// Rises whenever a conflict is added or changes.
+  std::uint64_t version() const { return version_; }
+  const TrafficCounts& counts() const { return counts_; }
+  const SeparationConfig& config() const { return config_; }
+
+ private:
+  SeparationConfig config_;
+  std::map<int, TrafficSample> tracks_;
+  std::map<int, std::optional<double>> intents_;
+  struct Ghost {
+    TrafficSample last;
+    Eigen::Vector2d home_m = Eigen::Vector2d::Zero();
+    double altitude_m = 0.0;
+    double speed_mps = 0.0;
+    double until_s = 0.0;
+  };
+  std::map<int, Ghost> ghosts_;
+  struct Held {
+    double altitude_m = 0.0;
+    double until_s = 0.0;
+  };
+  std::map<int, Held> orders_;                       // vehicle -> its standing avoid order
+  std::map<std::pair<int, int>, std::size_t> open_;  // pair -> index in conflicts_
+  std::vector<Conflict> conflicts_;
+  std::uint64_t version_ = 0;
+  TrafficCounts counts_;
+};
+
+}  // namespace fireswarm::server
