@@ -17,6 +17,7 @@
 #include "fireswarm/common/time.hpp"
 #include "fireswarm/planner/area_io.hpp"
 #include "fireswarm/planner/plan.hpp"
+#include "fireswarm/server/airspace.hpp"
 #include "fireswarm/server/journal.hpp"
 #include "fireswarm/server/journal_format.hpp"
 #include "fireswarm/server/lcm_bridge.hpp"
@@ -200,7 +201,13 @@ void PrintOperators(const Flags& f, const server::ServerConfig& config) {
   std::cerr << " (window +-" << config.command_window_us / 1'000'000 << " s)" << std::endl;
 }
 
-std::vector<server::DroneMission> PlanMissions(const Flags& f, const planner::SearchArea& area) {
+// The missions in their altitude layers (server/airspace.hpp), and the layers.
+struct PlannedMissions {
+  std::vector<server::DroneMission> missions;
+  server::AirspacePlan airspace;
+};
+
+PlannedMissions PlanMissions(const Flags& f, const planner::SearchArea& area) {
   const planner::FleetSpec fleet = FleetFor(f, area);
   planner::Plan plan;
   try {
@@ -208,9 +215,13 @@ std::vector<server::DroneMission> PlanMissions(const Flags& f, const planner::Se
   } catch (const std::invalid_argument& e) {
     throw UsageError(std::string("fireswarm serve: the planner refused the fleet: ") + e.what());
   }
-  std::vector<server::DroneMission> missions = server::WithoutLaunchSite(
+  PlannedMissions planned;
+  planned.missions = server::WithoutLaunchSite(
       server::ToDroneMissions(plan, kMissionId, f.altitude_m, f.speed_mps), area.frame,
       server::LaunchSitesOf(plan));
+  planned.airspace = server::AssignAirspace(planned.missions, area.frame,
+                                            server::LaunchSitesOf(plan), f.altitude_m,
+                                            server::SeparationConfig{});
   nlohmann::ordered_json line;
   line["event"] = "planned";
   line["drones"] = plan.drones.size();
@@ -231,8 +242,9 @@ std::vector<server::DroneMission> PlanMissions(const Flags& f, const planner::Se
   line["sites"] = std::move(sites);
   line["coverage"] = plan.coverage;
   line["makespan_s"] = plan.makespan_s;
+  line["separation"] = planned.airspace.rule;
   std::cout << line.dump() << std::endl;
-  return missions;
+  return planned;
 }
 
 std::optional<server::LcmBridge> BridgeFor(const Flags& f) {
@@ -265,7 +277,10 @@ void CompleteSetup(const Flags& f, const planner::SearchArea& area, Nanos now,
   for (const int id : ReceiverIds(f)) {
     if (!server.registry().Contains(static_cast<std::uint8_t>(id))) server.AddVehicle(id, now_s);
   }
-  if (server.mission() == nullptr) server.LoadMission(PlanMissions(f, area), now_s);
+  if (server.mission() == nullptr) {
+    PlannedMissions planned = PlanMissions(f, area);
+    server.LoadMission(std::move(planned.missions), now_s, std::move(planned.airspace));
+  }
   if (f.start && server.state() == server::MissionState::kIdle) {
     server::OperatorCommand start;
     start.reason = "--start";

@@ -161,6 +161,14 @@ void WebFeed::Update(const server::Server& server, double now_s, std::int64_t ut
     }
     commands_version_ = server.commands_version();
   }
+  const server::TrafficControl& traffic = server.traffic();
+  if (traffic.version() != traffic_version_) {
+    for (const server::Conflict& conflict : traffic.conflicts()) {
+      if (conflict.version <= traffic_version_) continue;
+      model_.OnConflict(server::ToConflict(conflict, utime, utime_at_zero));
+    }
+    traffic_version_ = traffic.version();
+  }
   for (const std::uint8_t id : server.registry().ids()) {
     model_.OnVehicleState(server::ToVehicleState(server, id, now_s, utime));
   }

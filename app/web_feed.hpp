@@ -80,6 +80,7 @@ class WebFeed {
   std::string plan_document_;  // model_.Plan() serialised, redone when the plan is fed
   double cpu_s_ = 0.0;
   std::uint64_t commands_version_ = 0;  // the server's commands_version() last fed
+  std::uint64_t traffic_version_ = 0;   // the server's traffic().version() last fed
   std::uint64_t refused_noted_ = 0;     // web_.refused() already counted in the model
 };
 

@@ -86,6 +86,16 @@ double Vehicle::ReturnSpeedMps() const {
   return 0.0;  // the navigator's cruise speed (nav.cruise_speed_mps)
 }
 
+double Vehicle::ReturnAltitudeM() const {
+  const Mission* mission = missions_.IsComplete(active_mission_) ? missions_.complete() : nullptr;
+  double altitude_m = navigation_setpoint_.altitude_m;
+  if (mission != nullptr && !mission->waypoints.empty() &&
+      mission->waypoints.back().altitude_m > 0.0) {
+    altitude_m = mission->waypoints.back().altitude_m;
+  }
+  return std::max(altitude_m, Param(ParamId::kTakeoffAltitudeM));
+}
+
 double Vehicle::ClimbOutAltitudeM() const {
   const Mission* mission = missions_.IsComplete(active_mission_) ? missions_.complete() : nullptr;
   if (mission != nullptr && !mission->waypoints.empty() &&
@@ -137,14 +147,12 @@ void Vehicle::EnterMode(FlightMode mode, Nanos now) {
       HoldHere(state.altitude_m);
       break;
     case FlightMode::kReturnToLaunch: {
-      // At the altitude it was flying to (its mission's return altitude, its
-      // layer), never below the take-off altitude; at the speed its mission was
-      // flown at (the planner counts the way home at that speed), else at the
-      // cruise speed.
+      // At its mission's return altitude (its layer home); at the speed its
+      // mission was flown at (the planner counts the way home at that speed),
+      // else at the cruise speed.
       RoutePoint home;
       home.position = home_.value_or(estimator_.position());
-      home.altitude_m =
-          std::max(navigation_setpoint_.altitude_m, Param(ParamId::kTakeoffAltitudeM));
+      home.altitude_m = ReturnAltitudeM();
       home.speed_mps = ReturnSpeedMps();
       StartRoute({home}, 0);
       break;
@@ -251,7 +259,18 @@ radio::CommandResult Vehicle::OnCommand(const radio::Command& command) {
       }
       return accept(FlightMode::kLand);
     case CommandType::kAvoid:
-      break;  // not yet flown: unsupported
+      // Only in the air, and only for a while: an order without an end would
+      // outlive the conflict it resolves. Altitude 0 ends the order early.
+      if (!Airborne() || command.duration_s == 0) return reject();
+      if (command.altitude_m <= 0.0) {
+        avoid_altitude_m_.reset();
+      } else {
+        avoid_altitude_m_ = command.altitude_m;
+        avoid_until_ = now_ + std::chrono::seconds(command.duration_s);
+      }
+      ++stats_.commands_accepted;
+      ++stats_.avoid_orders;
+      return CommandResult::kAccepted;
   }
   ++stats_.commands_rejected;
   return CommandResult::kUnsupported;
@@ -355,7 +374,20 @@ CascadeSetpoint Vehicle::Behave(Nanos now, std::optional<common::Micros> nav_dt)
     case FlightMode::kLanded:
       break;
   }
+  ApplyAvoid(now, setpoint);
   return setpoint;
+}
+
+void Vehicle::ApplyAvoid(Nanos now, CascadeSetpoint& setpoint) {
+  if (avoid_altitude_m_ && now >= avoid_until_) avoid_altitude_m_.reset();
+  if (!avoid_altitude_m_ || !Airborne()) return;
+  setpoint.altitude_m = *avoid_altitude_m_;
+  if (mode_ == FlightMode::kLand) {
+    // The landing waits level: no descent, and no "landed" while it waits.
+    setpoint.climb_rate_mps.reset();
+    land_low_altitude_m_ = estimator_.estimate().altitude_m;
+    land_progress_at_ = now;
+  }
 }
 
 ActuatorOutputs Vehicle::Step(Nanos now, const SensorInputs& inputs) {

@@ -102,6 +102,31 @@ nlohmann::ordered_json ToJson(const Report& report) {
   }
   j["collisions"] = collisions;
   j["min_separation_m"] = Optional(report.min_separation_m);
+  const SeparationOutcome& separation = report.separation;
+  j["separation"] = {{"rule", separation.rule},
+                     {"separation_m", Number(separation.separation_m)},
+                     {"conflicts", separation.conflicts},
+                     {"orders", separation.orders},
+                     {"resolved", separation.resolved},
+                     {"lost_separation", separation.lost_separation},
+                     {"closest", nullptr},
+                     {"lost", Json::array()}};
+  for (const SeparationOutcome::Lost& lost : separation.lost) {
+    j["separation"]["lost"].push_back({{"detected_s", Number(lost.detected_s)},
+                                       {"vehicle_a", lost.vehicle_a},
+                                       {"vehicle_b", lost.vehicle_b},
+                                       {"reported_min_m", Number(lost.reported_min_m)},
+                                       {"resolution", lost.resolution},
+                                       {"mover", lost.mover}});
+  }
+  if (const std::optional<ClosestApproach>& c = separation.closest) {
+    j["separation"]["closest"] = {{"t_s", Number(c->t_s)},
+                                  {"vehicle_a", c->vehicle_a},
+                                  {"vehicle_b", c->vehicle_b},
+                                  {"distance_m", Number(c->distance_m)},
+                                  {"altitude_a_m", Number(c->altitude_a_m)},
+                                  {"altitude_b_m", Number(c->altitude_b_m)}};
+  }
   j["radio"] = RadioJson(report.radio);
   Json vehicles = Json::object();
   for (const auto& [id, vehicle] : report.vehicles) {

@@ -91,6 +91,7 @@ server::ServerConfig MakeServerConfig(const Scenario& scenario, const RunOptions
   config.camera = *scenario.fleet.camera;
   config.camera_pitch_deg = scenario.fleet.camera_pitch_deg;
   config.launch_en_m = scenario.area.frame.ToLocal(scenario.fleet.launch);
+  config.separation = scenario.separation;
   return config;
 }
 
@@ -122,6 +123,7 @@ struct PlannedMissions {
   std::vector<server::DroneMission> missions;
   std::map<std::uint8_t, common::EastNorth> sites;
   std::map<int, int> sorties;  // receiver ID -> sorties planned
+  server::AirspacePlan airspace;
 };
 
 // Plans and turns the plan into the missions the vehicles fly. Planner refusals
@@ -135,10 +137,12 @@ PlannedMissions PlanMissions(const Scenario& scenario) {
     out.sites = server::LaunchSitesOf(plan);
     for (const planner::DronePlan& drone : plan.drones)
       out.sorties[drone.receiver_id] = drone.sorties;
-    out.missions = internal::InAltitudeLayers(server::WithoutLaunchSite(
+    out.missions = server::WithoutLaunchSite(
         server::ToDroneMissions(plan, kMissionId, scenario.fleet.altitude_m,
                                 scenario.fleet.speed_mps),
-        scenario.area.frame, out.sites));
+        scenario.area.frame, out.sites);
+    out.airspace = server::AssignAirspace(out.missions, scenario.area.frame, out.sites,
+                                          scenario.fleet.altitude_m, scenario.separation);
     return out;
   } catch (const std::invalid_argument& e) {
     throw ScenarioError(scenario.source + ": fleet: the planner refused it: " + e.what());
@@ -189,7 +193,7 @@ class Lockstep {
       radio_.AddVehicle(RadioSideOf(*vehicle, SilentWindowsOf(scenario, id)));
       vehicles_.push_back(std::move(vehicle));
     }
-    server_->LoadMission(planned.missions);
+    server_->LoadMission(planned.missions, 0.0, planned.airspace);
     std::string why;
     // utime: simulated microseconds since the start (docs/lcm.md), 0 now.
     const server::SignedCommand start = server::SignCommand(
@@ -388,6 +392,20 @@ RunResult RunScenario(const Scenario& scenario, const RunOptions& options) {
 
   const internal::FinalState final_state = run.Final();
   result.report = scorer.Finish(run.world(), run.server(), final_state);
+  const server::TrafficControl& traffic = run.server().traffic();
+  SeparationOutcome& separation = result.report.separation;
+  separation.rule = planned.airspace.rule;
+  separation.separation_m = traffic.config().separation_m;
+  separation.conflicts = traffic.counts().conflicts;
+  separation.orders = traffic.counts().orders;
+  separation.resolved = traffic.counts().resolved;
+  separation.lost_separation = traffic.counts().lost_separation;
+  for (const server::Conflict& c : traffic.conflicts()) {
+    if (c.outcome != server::ConflictOutcome::kLostSeparation) continue;
+    separation.lost.push_back({c.detected_s, c.vehicle_a, c.vehicle_b,
+                               c.observed_min_separation_m, server::ToString(c.resolution),
+                               c.mover});
+  }
   result.state_hash = run.simulation().StateHash();
   result.mission_state = server::ToString(run.server().state());
   const double wall_s =

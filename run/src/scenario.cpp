@@ -161,6 +161,32 @@ RadioConfig ReadRadio(const Mapping& root) {
   return out;
 }
 
+server::SeparationConfig ReadSeparation(const Mapping& root) {
+  server::SeparationConfig out;
+  const std::optional<Field> field = root.Find("separation");
+  if (!field) return out;
+  const Mapping separation(*field, {"separation_m", "layer_m", "search_layers", "transit_sectors",
+                                    "transit_min_m", "horizon_s", "resolve", "layers",
+                                    "max_altitude_m", "min_altitude_m"});
+  const Range positive{0.0, 10'000.0, true};
+  out.separation_m = separation.Number("separation_m", out.separation_m, positive);
+  out.layer_m = separation.Number("layer_m", out.layer_m, positive);
+  out.search_layers = separation.Integer("search_layers", out.search_layers, 1, 10);
+  out.transit_sectors = separation.Integer("transit_sectors", out.transit_sectors, 1, 12);
+  out.transit_min_m = separation.Number("transit_min_m", out.transit_min_m, positive);
+  out.horizon_s = separation.Number("horizon_s", out.horizon_s, Range{0.0, 600.0, true});
+  if (const auto f = separation.Find("resolve")) out.resolve = f->Bool();
+  if (const auto f = separation.Find("layers")) out.layers = f->Bool();
+  out.max_altitude_m = separation.Number("max_altitude_m", out.max_altitude_m, positive);
+  out.min_altitude_m =
+      separation.Number("min_altitude_m", out.min_altitude_m, Range{0.0, 10'000.0});
+  if (!(out.min_altitude_m < out.max_altitude_m)) {
+    field->Fail("min_altitude_m (" + std::to_string(out.min_altitude_m) +
+                ") must be below max_altitude_m (" + std::to_string(out.max_altitude_m) + ")");
+  }
+  return out;
+}
+
 WindSpec ReadWind(const Mapping& root) {
   WindSpec out;
   const std::optional<Field> field = root.Find("wind");
@@ -245,7 +271,7 @@ Scenario ParseScenario(std::string_view text, const std::string& source_name,
                         ": the scenario must be a YAML mapping of keys (name, area, fleet, ...)");
   }
   const Mapping root(top, {"name", "seed", "duration_s", "area", "no_fly", "fleet", "radio",
-                           "fires", "random_fires", "distractors", "wind", "faults", "expect"});
+                           "separation", "fires", "random_fires", "distractors", "wind", "faults", "expect"});
   Scenario scenario;
   scenario.source = source_name;
   const std::optional<Field> name = root.Find("name");
@@ -256,6 +282,7 @@ Scenario ParseScenario(std::string_view text, const std::string& source_name,
   internal::ReadArea(root, base_dir, scenario);
   scenario.fleet = ReadFleet(root, scenario.area);
   scenario.radio = ReadRadio(root);
+  scenario.separation = ReadSeparation(root);
   scenario.wind = ReadWind(root);
   internal::ReadEvents(root, scenario);
   scenario.expect = ReadExpect(root);

@@ -184,7 +184,11 @@ void Scorer::ObserveSeparation(const sim2d::World& world) {
       if (!Flying(truths[j])) continue;
       const double dh = (truths[i].position_m - truths[j].position_m).norm();
       const double d = std::hypot(dh, truths[i].altitude_m - truths[j].altitude_m);
-      if (!separation_seen_ || d < min_separation_m_) min_separation_m_ = d;
+      if (!separation_seen_ || d < min_separation_m_) {
+        min_separation_m_ = d;
+        closest_ = {world.time_s(), truths[i].id, truths[j].id, d, truths[i].altitude_m,
+                    truths[j].altitude_m};
+      }
       separation_seen_ = true;
     }
   }
@@ -341,7 +345,10 @@ Report Scorer::Finish(const sim2d::World& world, const server::Server& server,
   }
   report.collisions = collisions_;
   const double world_min = world.min_separation_m();
-  if (separation_seen_) report.min_separation_m = min_separation_m_;
+  if (separation_seen_) {
+    report.min_separation_m = min_separation_m_;
+    report.separation.closest = closest_;
+  }
   if (std::isfinite(world_min)) {
     report.min_separation_m = std::min(report.min_separation_m.value_or(world_min), world_min);
   }

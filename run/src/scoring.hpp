@@ -111,6 +111,7 @@ class Scorer {
   std::vector<Collision> collisions_;
   std::size_t events_seen_ = 0;
   double min_separation_m_ = 0.0;
+  ClosestApproach closest_;
   bool separation_seen_ = false;
   std::int64_t steps_ = 0;
   double next_coverage_s_ = 0.0;

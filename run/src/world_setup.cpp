@@ -152,24 +152,6 @@ std::vector<FireSpec> ExpandFires(const Scenario& scenario) {
   return fires;
 }
 
-std::vector<server::DroneMission> InAltitudeLayers(std::vector<server::DroneMission> missions) {
-  for (std::size_t k = 0; k < missions.size(); ++k) {
-    const double offset_m =
-        kAltitudeLayerM * static_cast<double>(k % static_cast<std::size_t>(kAltitudeLayers));
-    std::vector<std::vector<radio::Waypoint>> sorties = server::SortiesOf(missions[k]);
-    for (std::vector<radio::Waypoint>& route : sorties) {
-      for (radio::Waypoint& waypoint : route) waypoint.altitude_m += offset_m;
-      if (route.empty() || route.size() >= radio::kMaxMissionWaypoints) continue;
-      radio::Waypoint way_home = route.back();
-      way_home.altitude_m += kReturnLayerM * static_cast<double>(k) - offset_m;
-      way_home.flags = 0;  // no lane starts here
-      route.push_back(way_home);
-    }
-    server::SetSorties(missions[k], sorties);
-  }
-  return missions;
-}
-
 namespace {
 
 // The stands of the drones `ids` of one launch site, as StandPositions says.

@@ -43,7 +43,8 @@ CommandCenter::CommandCenter(CommandCenterConfig config)
       plan_(EmptyFeatureCollection()),
       plan_info_({{"mission_id", 0}, {"version", 0}}),
       alerts_(std::make_unique<internal::AlertLog>(config_.alerts_kept)),
-      separation_(std::make_unique<internal::SeparationWatch>(config_.separation_m)) {}
+      separation_(std::make_unique<internal::SeparationWatch>(config_.separation_m)),
+      conflicts_(std::make_unique<internal::ConflictWatch>()) {}
 
 CommandCenter::~CommandCenter() = default;
 CommandCenter::CommandCenter(CommandCenter&&) noexcept = default;
@@ -204,6 +205,12 @@ void CommandCenter::OnCommandStatus(const command_status_t& message) {
   }
 }
 
+void CommandCenter::OnConflict(const conflict_t& message) {
+  UpdateTime(message.utime);
+  conflicts_->Update(message, *alerts_);
+  conflicts_changed_ = true;
+}
+
 void CommandCenter::NoteRefused() {
   ++refused_;
   refused_changed_ = true;
@@ -250,6 +257,7 @@ nlohmann::json CommandCenter::State() const {
       {"alerts", alerts_->All()},
       {"commands", std::move(commands)},
       {"refused", refused_},
+      {"conflicts", conflicts_->Counts()},
   };
 }
 
@@ -284,6 +292,7 @@ std::optional<nlohmann::json> CommandCenter::TakeDelta() {
     changed_commands_.clear();
   }
   if (std::exchange(refused_changed_, false)) delta["refused"] = refused_;
+  if (std::exchange(conflicts_changed_, false)) delta["conflicts"] = conflicts_->Counts();
   if (!any && delta.size() == 1) return std::nullopt;
   delta["time_s"] = time_known_ ? nlohmann::json(time_s_) : nlohmann::json(nullptr);
   return delta;

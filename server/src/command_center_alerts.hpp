@@ -14,6 +14,7 @@
 #include <string_view>
 #include <utility>
 
+#include "fireswarm/conflict_t.hpp"
 #include "fireswarm/fire_track_t.hpp"
 #include "fireswarm/vehicle_state_t.hpp"
 
@@ -81,6 +82,28 @@ class SeparationWatch {
   double separation_m_;
   std::map<int, Eigen::Vector3d> airborne_;
   std::set<std::pair<int, int>> close_;  // (lower ID, higher ID) alerted, not yet parted
+};
+
+/// The server's predicted conflicts (conflict_t), one alert per step of each:
+/// "conflict" (warning) when predicted, "conflict_resolution" (info) when a drone
+/// is ordered out of it, "conflict_resolved" (info) or "separation_lost"
+/// (critical) when it is over. Counts them for the state's "conflicts".
+class ConflictWatch {
+ public:
+  void Update(const conflict_t& message, AlertLog& log);
+  /// {"predicted", "ordered", "resolved", "lost_separation", "open"}.
+  nlohmann::json Counts() const;
+
+ private:
+  struct Seen {
+    std::int8_t resolution = conflict_t::RESOLUTION_NONE;
+    std::int8_t outcome = conflict_t::OUTCOME_OPEN;
+  };
+  std::map<int, Seen> seen_;  // by conflict ID
+  std::uint64_t predicted_ = 0;
+  std::uint64_t ordered_ = 0;
+  std::uint64_t resolved_ = 0;
+  std::uint64_t lost_separation_ = 0;
 };
 
 }  // namespace fireswarm::server::internal

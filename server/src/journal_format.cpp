@@ -55,6 +55,38 @@ nlohmann::json MissionsJson(const std::vector<DroneMission>& missions) {
   return drones;
 }
 
+nlohmann::json AirspaceJson(const AirspacePlan& plan) {
+  nlohmann::json drones = nlohmann::json::array();
+  for (const DroneLayers& d : plan.drones) {
+    drones.push_back({{"vehicle", d.vehicle},
+                      {"search_layer", d.search_layer},
+                      {"search_altitude_m", d.search_altitude_m}});
+  }
+  return {{"rule", plan.rule},
+          {"base_altitude_m", plan.base_altitude_m},
+          {"layer_m", plan.layer_m},
+          {"search_layers", plan.search_layers},
+          {"transit_sectors", plan.transit_sectors},
+          {"drones", drones}};
+}
+
+AirspacePlan AirspaceFrom(const nlohmann::json& data) {
+  AirspacePlan plan;
+  plan.rule = data.at("rule").get<std::string>();
+  plan.base_altitude_m = data.at("base_altitude_m").get<double>();
+  plan.layer_m = data.at("layer_m").get<double>();
+  plan.search_layers = data.at("search_layers").get<int>();
+  plan.transit_sectors = data.at("transit_sectors").get<int>();
+  if (plan.search_layers < 1 || plan.transit_sectors < 1) {
+    throw std::runtime_error("airspace: search_layers and transit_sectors must be >= 1");
+  }
+  for (const nlohmann::json& d : data.at("drones")) {
+    plan.drones.push_back({d.at("vehicle").get<std::uint8_t>(), d.at("search_layer").get<int>(),
+                           d.at("search_altitude_m").get<double>()});
+  }
+  return plan;
+}
+
 std::vector<DroneMission> MissionsFrom(const nlohmann::json& drones) {
   std::vector<DroneMission> missions;
   for (const nlohmann::json& drone : drones) {
@@ -165,7 +197,11 @@ CommandRefused RefusalFrom(const nlohmann::json& data) {
 // field and std::runtime_error for an unknown kind or a command under another's name.
 JournalEvent EventFrom(const std::string& kind, const nlohmann::json& data) {
   if (kind == "vehicle") return VehicleAdded{data.at("id").get<int>()};
-  if (kind == "mission") return MissionLoaded{MissionsFrom(data.at("drones"))};
+  if (kind == "mission") {
+    MissionLoaded loaded{MissionsFrom(data.at("drones")), std::nullopt};
+    if (data.contains("airspace")) loaded.airspace = AirspaceFrom(data.at("airspace"));
+    return loaded;
+  }
   if (IsCommandKind(kind)) {
     CommandAccepted command = CommandFrom(data);
     if (kind != CommandKind(command.command)) {
@@ -250,7 +286,9 @@ nlohmann::json JournalDataOf(const JournalEntry& entry) {
             return {{"id", e.id}};
           },
           [](const MissionLoaded& e) -> nlohmann::json {
-            return {{"drones", MissionsJson(e.drones)}};
+            nlohmann::json mission = {{"drones", MissionsJson(e.drones)}};
+            if (e.airspace) mission["airspace"] = AirspaceJson(*e.airspace);
+            return mission;
           },
           [](const CommandAccepted& e) -> nlohmann::json {
             nlohmann::json command = {{"command", static_cast<int>(e.command)},

@@ -92,6 +92,19 @@ void CsvRows(std::ostream& out, const command_status_t& m) {
   }
 }
 
+std::string CsvHeader(const conflict_t&) {
+  return "utime,conflict_id,vehicle_a,vehicle_b,detected_utime,predicted_separation_m,"
+         "time_to_closest_s,resolution,mover,target_altitude_m,order_s,outcome,"
+         "observed_min_separation_m,closed_utime";
+}
+void CsvRows(std::ostream& out, const conflict_t& m) {
+  out << m.utime << ',' << m.conflict_id << ',' << m.vehicle_a << ',' << m.vehicle_b << ','
+      << m.detected_utime << ',' << m.predicted_separation_m << ',' << m.time_to_closest_s << ','
+      << int{m.resolution} << ',' << m.mover << ',' << m.target_altitude_m << ',' << m.order_s
+      << ',' << int{m.outcome} << ',' << m.observed_min_separation_m << ',' << m.closed_utime
+      << '\n';
+}
+
 std::string CsvName(const char* channel) {
   std::string name(channel);
   for (char& c : name) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
@@ -210,6 +223,15 @@ void LcmBridge::Publish(const Server& server, double now_s, std::int64_t utime,
     Emit(kCommandStatusChannel, ToCommandStatus(refusals[n - first_kept], utime), utime);
   }
   refusals_published_ = server.refusal_count();
+  // Conflicts on change: an operator must see one before it comes to pass.
+  const TrafficControl& traffic = server.traffic();
+  if (traffic.version() > traffic_version_) {
+    for (const Conflict& conflict : traffic.conflicts()) {
+      if (conflict.version <= traffic_version_) continue;
+      Emit(kConflictChannel, ToConflict(conflict, utime, utime_at_zero), utime);
+    }
+    traffic_version_ = traffic.version();
+  }
   const LcmRates& rates = config_.rates;
   const auto due = [&](const char* channel, double hz) {
     double& next = next_s_[channel];

@@ -277,6 +277,26 @@ command_status_t ToCommandStatus(const CommandRefused& refusal, std::int64_t uti
   return m;
 }
 
+conflict_t ToConflict(const Conflict& conflict, std::int64_t utime, std::int64_t utime_at_zero) {
+  conflict_t m{};
+  m.utime = utime;
+  m.conflict_id = conflict.id;
+  m.vehicle_a = static_cast<std::int16_t>(conflict.vehicle_a);
+  m.vehicle_b = static_cast<std::int16_t>(conflict.vehicle_b);
+  m.detected_utime = Utime(utime_at_zero, conflict.detected_s);
+  m.predicted_separation_m = conflict.predicted_separation_m;
+  m.time_to_closest_s = conflict.time_to_closest_s;
+  m.resolution = static_cast<std::int8_t>(conflict.resolution);
+  m.mover = static_cast<std::int16_t>(conflict.mover);
+  m.target_altitude_m = conflict.target_altitude_m;
+  m.order_s = conflict.order_s;
+  m.outcome = static_cast<std::int8_t>(conflict.outcome);
+  m.observed_min_separation_m = conflict.observed_min_separation_m;
+  m.closed_utime =
+      conflict.outcome == ConflictOutcome::kOpen ? 0 : Utime(utime_at_zero, conflict.closed_s);
+  return m;
+}
+
 CommandCredentials CredentialsFromLcm(const operator_command_t& message) {
   CommandCredentials credentials{message.operator_id, message.utime, message.nonce, {}};
   std::copy(std::begin(message.mac), std::end(message.mac), credentials.mac.begin());

@@ -39,6 +39,7 @@ std::optional<ReplayEvent> DecodeEvent(const lcm::LogEvent& event,
   if (channel == kRadioStatsChannel) return Decode<radio_stats_t>(event, path);
   if (channel == kPlanChannel) return Decode<plan_t>(event, path);
   if (channel == kCommandStatusChannel) return Decode<command_status_t>(event, path);
+  if (channel == kConflictChannel) return Decode<conflict_t>(event, path);
   return std::nullopt;
 }
 
@@ -98,6 +99,7 @@ void Apply(CommandCenter& center, const ReplayMessage& message) {
     void operator()(const mission_status_t& m) const { center.OnMissionStatus(m); }
     void operator()(const radio_stats_t& m) const { center.OnRadioStats(m); }
     void operator()(const command_status_t& m) const { center.OnCommandStatus(m); }
+    void operator()(const conflict_t& m) const { center.OnConflict(m); }
   };
   std::visit(Visitor{center}, message);
 }

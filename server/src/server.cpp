@@ -20,6 +20,14 @@ namespace fireswarm::server {
 
 namespace {
 
+// A lost drone's way home as the tactical watch predicts it (ResolveConflicts)
+// when its mission does not say its speed: the vehicles' cruise speed, m/s; it
+// comes down over its stand at about this rate, m/s; and the watch keeps it this
+// much longer, s (a landing that takes longer, wind).
+constexpr double kLostDroneSpeedMps = 10.0;
+constexpr double kLostDroneDescentMps = 1.0;
+constexpr double kLostDroneSlackS = 60.0;
+
 // Room the transit planner keeps around the no-fly zones for its sampling, m (it
 // grows its box to each query's endpoints as well).
 constexpr double kTransitMarginM = 1'000.0;
@@ -132,7 +140,8 @@ void Server::AddVehicle(int receiver_id, double now_s) {
   Record(now_s, VehicleAdded{receiver_id});
 }
 
-void Server::LoadMission(std::vector<DroneMission> missions, double now_s) {
+void Server::LoadMission(std::vector<DroneMission> missions, double now_s,
+                         std::optional<AirspacePlan> airspace) {
   if (mission_) throw std::invalid_argument("a mission is already loaded");
   for (const DroneMission& m : missions) {
     if (!registry_.Contains(m.vehicle)) {
@@ -140,8 +149,9 @@ void Server::LoadMission(std::vector<DroneMission> missions, double now_s) {
                                   ", which is not registered");
     }
   }
-  MissionLoaded loaded{missions};
+  MissionLoaded loaded{missions, airspace};
   mission_.emplace(*scheduler_, std::move(missions), config_.mission);
+  airspace_ = std::move(airspace);
   Record(now_s, std::move(loaded));
 }
 
@@ -156,6 +166,7 @@ std::vector<radio::Burst> Server::Step(common::Nanos now, std::span<const std::u
   HandOverLostDrones(now_s);
   RecallHandedOverDrones(now_s);
   RebalanceSorties(now_s);
+  ResolveConflicts(now_s);
   UpdateState(now_s);
   return bursts;
 }
@@ -180,6 +191,7 @@ void Server::OnEvent(const radio::SchedulerEvent& event, double now_s) {
     }
     clock_offset_s_[telemetry->vehicle] =
         now_s - static_cast<double>(telemetry->telemetry.time_ms) / common::kMillisPerSecond;
+    WatchTraffic(telemetry->vehicle, telemetry->telemetry, where, now_s);
   } else if (const auto* report = std::get_if<radio::FireReportReceived>(&event)) {
     registry_.OnReply(report->vehicle, now_s);
     OnFireReport(*report, now_s);
@@ -201,6 +213,90 @@ void Server::OnEvent(const radio::SchedulerEvent& event, double now_s) {
     if (journaled != journaled_phases_.end() && journaled->second == now) continue;
     Record(now_s, PhaseChanged{id, now.phase, mission_->progress(id).sortie, now.sortie_starts});
     journaled_phases_[id] = std::move(now);
+  }
+}
+
+void Server::WatchTraffic(std::uint8_t vehicle, const radio::Telemetry& telemetry,
+                          const Eigen::Vector2d& where_en_m, double now_s) {
+  const bool on_ground =
+      telemetry.mode == radio::FlightMode::kIdle || telemetry.mode == radio::FlightMode::kLanded;
+  if (on_ground || (telemetry.flags & radio::telemetry_flags::kGpsFix) == 0) {
+    traffic_.Forget(vehicle);
+    return;
+  }
+  TrafficSample sample;
+  sample.position_m = {where_en_m.x(), where_en_m.y(), telemetry.altitude_m};
+  sample.velocity_mps = {telemetry.velocity_east_mps, telemetry.velocity_north_mps,
+                         telemetry.climb_rate_mps};
+  sample.at_s = now_s;
+  sample.intent_altitude_m = IntentAltitudeM(vehicle, telemetry.mode);
+  traffic_.Observe(vehicle, sample);
+}
+
+std::optional<double> Server::IntentAltitudeM(std::uint8_t vehicle, radio::FlightMode mode) const {
+  if (mode == radio::FlightMode::kLand) return 0.0;
+  if (mode != radio::FlightMode::kTakeoff && mode != radio::FlightMode::kReturnToLaunch) {
+    return std::nullopt;
+  }
+  if (!mission_) return std::nullopt;
+  const std::vector<std::uint8_t> vehicles = mission_->vehicles();
+  if (std::ranges::find(vehicles, vehicle) == vehicles.end()) return std::nullopt;
+  // The vehicle's sortie: it climbs out to its first waypoint's altitude and
+  // flies home at its last's (agents' ClimbOutAltitudeM, ReturnAltitudeM).
+  const DroneMission& flown = mission_->mission_of(vehicle);
+  const std::size_t sorties = SortieCount(flown);
+  if (sorties == 0) return std::nullopt;
+  const auto [first, end] = SortieRange(flown, std::min(mission_->progress(vehicle).sortie, sorties - 1));
+  if (end <= first) return std::nullopt;
+  const double altitude_m = mode == radio::FlightMode::kTakeoff
+                                ? flown.waypoints[first].altitude_m
+                                : flown.waypoints[end - 1].altitude_m;
+  if (altitude_m <= 0.0) return std::nullopt;
+  return altitude_m;
+}
+
+void Server::ResolveConflicts(double now_s) {
+  if (!traffic_.Due(now_s)) return;  // Step runs for every radio event: not this
+  // A drone given up as lost flies home by itself at its sortie's last altitude
+  // (its return layer), at its mission's speed, and comes down over its stand.
+  for (const std::uint8_t vehicle : registry_.LostAt(now_s)) {
+    if (!traffic_.Flying(vehicle)) continue;
+    const VehicleState& state = registry_.state(vehicle);
+    const auto stand = stand_en_m_.find(vehicle);
+    if (!state.telemetry || stand == stand_en_m_.end()) {
+      traffic_.Forget(vehicle);  // nowhere to predict it to
+      continue;
+    }
+    const radio::Telemetry& last = *state.telemetry;
+    TrafficSample sample;
+    const Eigen::Vector2d where = LocalM(frame_, {last.lat_deg, last.lon_deg});
+    sample.position_m = {where.x(), where.y(), last.altitude_m};
+    sample.at_s = state.telemetry_time_s;
+    double altitude_m = last.altitude_m;
+    double speed_mps = kLostDroneSpeedMps;
+    const std::vector<std::uint8_t> flying_a_mission =
+        mission_ ? mission_->vehicles() : std::vector<std::uint8_t>{};
+    if (std::ranges::find(flying_a_mission, vehicle) != flying_a_mission.end()) {
+      const DroneMission& flown = mission_->mission_of(vehicle);
+      const auto [first, end] =
+          SortieRange(flown, std::min(mission_->progress(vehicle).sortie, SortieCount(flown) - 1));
+      // The vehicle flies home at its sortie's way home altitude (agents'
+      // Vehicle::ReturnAltitudeM).
+      if (end > first && flown.waypoints[end - 1].altitude_m > 0.0) {
+        altitude_m = flown.waypoints[end - 1].altitude_m;
+        if (flown.waypoints[end - 1].speed_mps > 0.0) speed_mps = flown.waypoints[end - 1].speed_mps;
+      }
+    }
+    const double home_s = (stand->second - where).norm() / speed_mps;
+    traffic_.ExpectLost(vehicle, sample, stand->second, altitude_m, speed_mps,
+                        sample.at_s + home_s + altitude_m / kLostDroneDescentMps + kLostDroneSlackS);
+  }
+  for (const AvoidOrder& order : traffic_.Step(now_s)) {
+    radio::Command avoid;
+    avoid.type = radio::CommandType::kAvoid;
+    avoid.altitude_m = order.altitude_m;
+    avoid.duration_s = static_cast<std::uint16_t>(std::ceil(order.duration_s));
+    scheduler_->SendCommand(static_cast<std::uint8_t>(order.vehicle), avoid, /*urgent=*/true);
   }
 }
 

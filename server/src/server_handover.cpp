@@ -49,6 +49,12 @@ std::vector<Taker> Server::TakersFor(std::uint8_t lost, double now_s) const {
     taker.remaining = mission_->Remaining(id, /*from_leg_start=*/false);
     const std::vector<radio::Waypoint>& own = mission_->mission_of(id).waypoints;
     taker.altitude_m = own.empty() ? telemetry->altitude_m : own.front().altitude_m;
+    // Its search layer (the first waypoint is its climb-out's transit layer).
+    if (airspace_) {
+      for (const DroneLayers& layers : airspace_->drones) {
+        if (layers.vehicle == id) taker.altitude_m = layers.search_altitude_m;
+      }
+    }
     taker.speed_mps = own.empty() ? 0.0 : own.front().speed_mps;
     takers.push_back(std::move(taker));
   }

@@ -67,7 +67,7 @@ void Server::Replay(const JournalEntry& entry) {
   std::visit(
       Overloaded{
           [&](const VehicleAdded& e) { AddVehicle(e.id, t_s); },
-          [&](const MissionLoaded& e) { LoadMission(e.drones, t_s); },
+          [&](const MissionLoaded& e) { LoadMission(e.drones, t_s, e.airspace); },
           [&](const CommandAccepted& e) {
             using Kind = OperatorCommand::Kind;
             // Its ID is taken; a journal from before IDs took the next one.

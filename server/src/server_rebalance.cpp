@@ -65,8 +65,11 @@ void Server::RebalanceSorties(double now_s) {
     const double donor_search_m = given.front().altitude_m;
     const double donor_home_m = given.back().altitude_m;
     std::vector<radio::Waypoint> sortie = *mission_->TakeLastSortie(*donor);
-    // The taker's own layer and way home (its mission's first and last altitude).
-    if (!own.empty()) {
+    // With an airspace plan the sortie keeps its altitudes: the donor's search
+    // layer is the one its region was deconflicted in, and its transits' layers
+    // are by heading from the site the two share (airspace.hpp). Without one, the
+    // taker's own layer and way home (its mission's first and last altitude).
+    if (!own.empty() && !airspace_) {
       for (radio::Waypoint& waypoint : sortie) {
         if (waypoint.altitude_m == donor_search_m) {
           waypoint.altitude_m = own.front().altitude_m;

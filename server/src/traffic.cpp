@@ -2,13 +2,146 @@
 // telemetry, avoid orders, outcomes. The rules are in traffic.hpp.
 #include "fireswarm/server/traffic.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace fireswarm::server {
 
 namespace {
+
+// A prediction counts as a conflict this much inside the limit's reach: the
+// positions are noisy by a few metres, and two drones in neighbouring layers
+// (layer_m apart, each wandering about +-2 m) must not count.
+constexpr double kPredictionMarginM = 3.0;
+// The time an order needs before the mover answers it: the telemetry's age at
+// 250 drones on one channel (about 3 s), the order's wait for its turn and the
+// vehicle's altitude loop; the prediction of a candidate resolution starts its
+// climb this late.
+constexpr double kOrderDelayS = 3.0;
+// What the vehicles climb and descend at when ordered, m/s (agents' altitude
+// loop; the planner's FleetSpec climb_mps and descent_mps).
+constexpr double kClimbMps = 3.0;
+constexpr double kDescentMps = 2.0;
+// A landing comes down at about this (agents' land_descent_mps), m/s.
+constexpr double kLandingMps = 1.0;
+// A drone's reported climb rate is carried on for this long at most: a climb to a
+// layer ends there, and the prediction must not climb it to the sky.
+constexpr double kVerticalLookS = 8.0;
+// Telemetry older than this is carried on no further (the registry gives the
+// drone up as lost later; ExpectLost then predicts its way home).
+constexpr double kMaxExtrapolationS = 10.0;
+// The prediction's time step inside a close window, s.
+constexpr double kSampleS = 0.25;
+// An order lasts until the pair has passed, plus this, s; and at least kMinOrderS.
+constexpr double kOrderTailS = 10.0;
+constexpr double kMinOrderS = 15.0;
+constexpr double kMaxOrderS = 180.0;
+// A pair still predicted in conflict is resolved again at most this often, s:
+// the mover's telemetry needs time to show the order.
+constexpr double kReorderS = 5.0;
+// A ghost (lost drone) comes down over its home at this rate, m/s.
+constexpr double kGhostDescentMps = 1.0;
+
+// How one drone is predicted to move from now: straight on horizontally, and
+// vertically toward an ordered altitude, or on its reported climb for a while.
+struct Motion {
+  int vehicle = 0;
+  Eigen::Vector2d position_m = Eigen::Vector2d::Zero();  // now
+  Eigen::Vector2d velocity_mps = Eigen::Vector2d::Zero();
+  double altitude_m = 0.0;
+  double climb_mps = 0.0;
+  std::optional<double> intent_m;  // where it climbs or descends to by itself
+  std::optional<double> target_m;  // an ordered altitude
+  double target_after_s = 0.0;     // the order starts to act this late
+  // A lost drone flying home by itself.
+  bool ghost = false;
+  Eigen::Vector2d home_m = Eigen::Vector2d::Zero();
+  double ghost_speed_mps = 0.0;
+
+  Eigen::Vector2d PositionAt(double t) const {
+    if (!ghost) return position_m + velocity_mps * t;
+    const Eigen::Vector2d to_home = home_m - position_m;
+    const double distance = to_home.norm();
+    if (distance < 1e-6) return home_m;
+    return position_m + to_home / distance * std::min(distance, ghost_speed_mps * t);
+  }
+
+  double AltitudeAt(double t) const {
+    if (ghost) {
+      const double arrival_s = (home_m - position_m).norm() / std::max(ghost_speed_mps, 0.1);
+      return std::max(0.0, altitude_m - kGhostDescentMps * std::max(0.0, t - arrival_s));
+    }
+    const double before = std::min(t, target_after_s);
+    double z = SelfAltitudeAt(target_m ? before : t);
+    if (target_m && t > target_after_s) {
+      const double after = t - target_after_s;
+      const double rate = *target_m > z ? kClimbMps : kDescentMps;
+      const double step = std::min(std::abs(*target_m - z), rate * after);
+      z += *target_m > z ? step : -step;
+    }
+    return std::max(0.0, z);
+  }
+
+  // Unordered: toward its own intent at its reported rate (at least the
+  // vehicles' usual one), or on its reported climb for a few seconds.
+  double SelfAltitudeAt(double t) const {
+    if (!intent_m) return altitude_m + climb_mps * std::min(t, kVerticalLookS);
+    const bool up = *intent_m > altitude_m;
+    const double rate = std::max(std::abs(climb_mps), up ? kClimbMps : kLandingMps);
+    const double step = std::min(std::abs(*intent_m - altitude_m), rate * t);
+    return altitude_m + (up ? step : -step);
+  }
+};
+
+struct Approach {
+  double distance_m = std::numeric_limits<double>::infinity();
+  double at_s = 0.0;
+  double window_end_s = 0.0;  // when the pair is apart horizontally again
+};
+
+// The closest the two come over [0, horizon_s] while horizontally within
+// `reach_m` of each other (farther apart they cannot conflict).
+Approach Closest(const Motion& a, const Motion& b, double horizon_s, double reach_m) {
+  Approach out;
+  double first = 0.0;
+  double last = horizon_s;
+  if (!a.ghost && !b.ghost) {
+    // Straight lines: the window where the horizontal distance is under reach.
+    const Eigen::Vector2d r = b.position_m - a.position_m;
+    const Eigen::Vector2d w = b.velocity_mps - a.velocity_mps;
+    const double ww = w.squaredNorm();
+    const double c = r.squaredNorm() - reach_m * reach_m;
+    if (ww < 1e-9) {
+      if (c > 0.0) return out;
+    } else {
+      const double half_b = r.dot(w);
+      const double discriminant = half_b * half_b - ww * c;
+      if (discriminant < 0.0) return out;
+      const double root = std::sqrt(discriminant);
+      first = std::max(0.0, (-half_b - root) / ww);
+      last = std::min(horizon_s, (-half_b + root) / ww);
+      if (first > last) return out;
+    }
+  }
+  for (double t = first;; t += kSampleS) {
+    t = std::min(t, last);
+    const Eigen::Vector2d dh = b.PositionAt(t) - a.PositionAt(t);
+    if (dh.squaredNorm() <= reach_m * reach_m) {
+      const double d = std::hypot(dh.norm(), b.AltitudeAt(t) - a.AltitudeAt(t));
+      if (d < out.distance_m) {
+        out.distance_m = d;
+        out.at_s = t;
+      }
+      out.window_end_s = t;
+    }
+    if (t >= last) break;
+  }
+  return out;
+}
 
 void RequirePositive(double value, const char* field) {
   if (!(value > 0.0) || !std::isfinite(value)) {
@@ -67,25 +200,218 @@ TrafficControl::TrafficControl(const SeparationConfig& config) : config_(config)
 
 void TrafficControl::Observe(int vehicle, const TrafficSample& sample) {
   tracks_[vehicle] = sample;
+  ghosts_.erase(vehicle);  // heard again: no longer predicted blind
 }
 
 void TrafficControl::Forget(int vehicle) {
   tracks_.erase(vehicle);
+  ghosts_.erase(vehicle);
 }
 
 void TrafficControl::ExpectLost(int vehicle, const TrafficSample& last,
-                                const Eigen::Vector2d& home_m, double altitude_m, double speed_mps,
-                                double until_s) {
+                                const Eigen::Vector2d& home_m, double altitude_m,
+                                double speed_mps, double until_s) {
   tracks_.erase(vehicle);
   ghosts_[vehicle] = Ghost{last, home_m, altitude_m, speed_mps, until_s};
 }
 
-void TrafficControl::SetIntent(int vehicle, std::optional<double> altitude_m) {
-  intents_[vehicle] = altitude_m;
+namespace {
+
+Eigen::Vector2d Horizontal(const Eigen::Vector3d& v) {
+  return {v.x(), v.y()};
 }
 
-std::vector<AvoidOrder> TrafficControl::Step(double /*now_s*/) {
-  return {};  // TODO(traffic): predictions (next commit)
+std::vector<Motion> Motions(const std::map<int, TrafficSample>& tracks, const auto& ghosts,
+                            const auto& orders, double now_s) {
+  std::vector<Motion> out;
+  for (const auto& [vehicle, sample] : tracks) {
+    const double age_s = std::clamp(now_s - sample.at_s, 0.0, kMaxExtrapolationS);
+    Motion m;
+    m.vehicle = vehicle;
+    m.velocity_mps = Horizontal(sample.velocity_mps);
+    m.position_m = Horizontal(sample.position_m) + m.velocity_mps * age_s;
+    m.climb_mps = sample.velocity_mps.z();
+    m.intent_m = sample.intent_altitude_m;
+    m.altitude_m = sample.position_m.z();
+    m.altitude_m = std::max(0.0, m.SelfAltitudeAt(age_s));
+    const auto order = orders.find(vehicle);
+    if (order != orders.end() && order->second.until_s > now_s) {
+      m.target_m = order->second.altitude_m;
+      // Ordered a while ago: the climb has started; just now: it starts later.
+      m.target_after_s = std::max(0.0, order->second.from_s + kOrderDelayS - now_s);
+    }
+    out.push_back(m);
+  }
+  for (const auto& [vehicle, ghost] : ghosts) {
+    if (ghost.until_s <= now_s) continue;
+    Motion m;
+    m.vehicle = vehicle;
+    m.ghost = true;
+    m.home_m = ghost.home_m;
+    m.ghost_speed_mps = ghost.speed_mps;
+    // Where it would be by now on its way home.
+    Motion from_last = m;
+    from_last.position_m = Horizontal(ghost.last.position_m);
+    from_last.altitude_m = ghost.altitude_m;
+    const double since_s = std::max(0.0, now_s - ghost.last.at_s);
+    m.position_m = from_last.PositionAt(since_s);
+    m.altitude_m = from_last.AltitudeAt(since_s);
+    out.push_back(m);
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<AvoidOrder> TrafficControl::Step(double now_s) {
+  if (!Due(now_s)) return {};
+  last_step_s_ = now_s;
+  std::erase_if(ghosts_, [&](const auto& entry) { return entry.second.until_s <= now_s; });
+  std::erase_if(orders_, [&](const auto& entry) { return entry.second.until_s <= now_s; });
+  std::vector<Motion> motions = Motions(tracks_, ghosts_, orders_, now_s);
+  const double reach_m = config_.separation_m + kPredictionMarginM;
+  const auto index_of = [&](int vehicle) -> std::size_t {
+    for (std::size_t i = 0; i < motions.size(); ++i) {
+      if (motions[i].vehicle == vehicle) return i;
+    }
+    return motions.size();
+  };
+
+  // Every pair predicted inside the limit, soonest first.
+  struct Predicted {
+    std::pair<int, int> pair;
+    Approach approach;
+  };
+  std::vector<Predicted> predicted;
+  for (std::size_t i = 0; i < motions.size(); ++i) {
+    for (std::size_t j = i + 1; j < motions.size(); ++j) {
+      const Approach approach = Closest(motions[i], motions[j], config_.horizon_s, reach_m);
+      if (approach.distance_m >= reach_m) continue;
+      predicted.push_back({std::minmax(motions[i].vehicle, motions[j].vehicle), approach});
+    }
+  }
+  std::sort(predicted.begin(), predicted.end(), [](const Predicted& a, const Predicted& b) {
+    return std::tie(a.approach.at_s, a.pair) < std::tie(b.approach.at_s, b.pair);
+  });
+
+  std::vector<AvoidOrder> out;
+  std::map<std::pair<int, int>, bool> still;
+  for (const Predicted& p : predicted) {
+    still[p.pair] = true;
+    auto open = open_.find(p.pair);
+    if (open == open_.end()) {
+      Conflict conflict;
+      conflict.id = static_cast<std::int32_t>(conflicts_.size() + 1);
+      conflict.vehicle_a = p.pair.first;
+      conflict.vehicle_b = p.pair.second;
+      conflict.detected_s = now_s;
+      conflict.predicted_separation_m = p.approach.distance_m;
+      conflict.time_to_closest_s = p.approach.at_s;
+      const Motion& a = motions[index_of(p.pair.first)];
+      const Motion& b = motions[index_of(p.pair.second)];
+      conflict.observed_min_separation_m =
+          std::hypot((a.position_m - b.position_m).norm(), a.altitude_m - b.altitude_m);
+      conflicts_.push_back(conflict);
+      open = open_.emplace(p.pair, conflicts_.size() - 1).first;
+      ++counts_.conflicts;
+      conflicts_.back().version = ++version_;
+    }
+    if (!config_.resolve) continue;
+    const auto last = last_order_s_.find(p.pair);
+    if (last != last_order_s_.end() && now_s < last->second + kReorderS) continue;
+    // Candidates: either drone (a lost one cannot be told) to above or below the
+    // other, or, when it is climbing or descending, to stay where it is.
+    struct Candidate {
+      int mover = 0;
+      double altitude_m = 0.0;
+      Resolution resolution = Resolution::kNone;
+      double score = std::numeric_limits<double>::infinity();
+    };
+    Candidate best;
+    for (const int mover : {p.pair.second, p.pair.first}) {
+      const std::size_t m = index_of(mover);
+      const std::size_t o = index_of(mover == p.pair.first ? p.pair.second : p.pair.first);
+      if (m == motions.size() || o == motions.size() || motions[m].ghost) continue;
+      const Motion& self = motions[m];
+      const Motion& other = motions[o];
+      double other_low = other.AltitudeAt(0.0);
+      double other_high = other_low;
+      for (double t = 0.0; t <= p.approach.window_end_s + kSampleS; t += 1.0) {
+        other_low = std::min(other_low, other.AltitudeAt(t));
+        other_high = std::max(other_high, other.AltitudeAt(t));
+      }
+      std::vector<std::pair<double, Resolution>> targets;
+      const double above = other_high + config_.layer_m;
+      const double below = other_low - config_.layer_m;
+      if (above <= config_.max_altitude_m) targets.emplace_back(above, Resolution::kClimb);
+      if (below >= config_.min_altitude_m) targets.emplace_back(below, Resolution::kDescend);
+      if (std::abs(self.climb_mps) > 0.5) targets.emplace_back(self.altitude_m, Resolution::kLevel);
+      for (const auto& [altitude, resolution] : targets) {
+        Motion moved = self;
+        moved.target_m = altitude;
+        moved.target_after_s = kOrderDelayS;
+        double score = std::abs(altitude - self.altitude_m) / config_.layer_m;
+        for (std::size_t k = 0; k < motions.size(); ++k) {
+          if (k == m) continue;
+          const Approach after = Closest(moved, motions[k], config_.horizon_s, reach_m);
+          if (after.distance_m < reach_m) score += k == o ? 1000.0 : 100.0;
+        }
+        if (score < best.score) best = {mover, altitude, resolution, score};
+      }
+    }
+    if (best.mover == 0) continue;
+    const double order_s =
+        std::clamp(p.approach.window_end_s + kOrderTailS, kMinOrderS, kMaxOrderS);
+    orders_[best.mover] = Held{best.altitude_m, now_s + order_s, now_s};
+    // Later pairs see the order.
+    Motion& mover = motions[index_of(best.mover)];
+    mover.target_m = best.altitude_m;
+    mover.target_after_s = kOrderDelayS;
+    last_order_s_[p.pair] = now_s;
+    out.push_back({best.mover, best.altitude_m, order_s, conflicts_[open->second].id});
+    ++counts_.orders;
+    Conflict& conflict = conflicts_[open->second];
+    conflict.resolution = best.resolution;
+    conflict.mover = best.mover;
+    conflict.target_altitude_m = best.altitude_m;
+    conflict.order_s = order_s;
+    conflict.version = ++version_;
+  }
+
+  // What the telemetry says of the open ones; those no longer predicted close.
+  for (auto it = open_.begin(); it != open_.end();) {
+    Conflict& conflict = conflicts_[it->second];
+    const std::size_t a = index_of(conflict.vehicle_a);
+    const std::size_t b = index_of(conflict.vehicle_b);
+    const bool both = a < motions.size() && b < motions.size();
+    if (both) {
+      const double d = std::hypot((motions[a].position_m - motions[b].position_m).norm(),
+                                  motions[a].altitude_m - motions[b].altitude_m);
+      if (d < conflict.observed_min_separation_m) {
+        conflict.observed_min_separation_m = d;
+        conflict.version = ++version_;
+      }
+    }
+    // Open until no longer predicted close and past each other (or one gone):
+    // a working order takes the pair out of the predictions before it passes.
+    const bool passed =
+        !both || (motions[b].position_m - motions[a].position_m)
+                         .dot(motions[b].velocity_mps - motions[a].velocity_mps) >= 0.0;
+    if (still.contains(it->first) || !passed) {
+      ++it;
+      continue;
+    }
+    conflict.outcome = conflict.observed_min_separation_m < config_.separation_m
+                           ? ConflictOutcome::kLostSeparation
+                           : ConflictOutcome::kResolved;
+    ++(conflict.outcome == ConflictOutcome::kResolved ? counts_.resolved
+                                                       : counts_.lost_separation);
+    conflict.closed_s = now_s;
+    conflict.version = ++version_;
+    last_order_s_.erase(it->first);
+    it = open_.erase(it);
+  }
+  return out;
 }
 
 }  // namespace fireswarm::server

@@ -55,7 +55,7 @@ JournalEntry RoundTrip(const JournalEntry& entry, std::uint64_t seq = 1) {
 TEST(JournalFormat, EveryEventComesBackAsItWasWritten) {
   const std::vector<JournalEntry> entries{
       {0.0, 1, VehicleAdded{4}},
-      {0.5, 2, MissionLoaded{{MissionOf(4, 1), MissionOf(5, 1)}}},
+      {0.5, 2, MissionLoaded{{MissionOf(4, 1), MissionOf(5, 1)}, std::nullopt}},
       {1.0, 3,
        CommandAccepted{OperatorCommand::Kind::kRetaskVehicle, 4, {46.0, -74.5}, "look again"}},
       {2.0, 4, PhaseChanged{4, DronePhase::kFlying, 0, std::nullopt}},
@@ -101,7 +101,7 @@ TEST(JournalFormat, EveryEventComesBackAsItWasWritten) {
 TEST(JournalFormat, SortiesComeBackWithTheMissionAndEachPhase) {
   DroneMission mission = MissionOf(4, 1);
   mission.sortie_starts = {1};
-  const JournalEntry loaded = RoundTrip({0.5, 2, MissionLoaded{{mission}}});
+  const JournalEntry loaded = RoundTrip({0.5, 2, MissionLoaded{{mission}, std::nullopt}});
   EXPECT_EQ(std::get<MissionLoaded>(loaded.event).drones.at(0).sortie_starts,
             (std::vector<std::size_t>{1}));
   const JournalEntry phase = RoundTrip(

@@ -54,6 +54,7 @@ struct VehicleStats {
   std::uint64_t commands_rejected = 0;
   std::uint64_t link_lost_returns = 0;
   std::uint64_t low_battery_returns = 0;
+  std::uint64_t avoid_orders = 0;  ///< the server's avoid orders taken
 };
 
 class Vehicle final : public radio::VehicleRequestHandler {
@@ -107,6 +108,14 @@ class Vehicle final : public radio::VehicleRequestHandler {
   /// speed the search was planned and flown at), or 0 (the cruise speed
   /// parameter) without a mission or a speed in it, m/s.
   double ReturnSpeedMps() const;
+  /// The way home's altitude: the active mission's last waypoint's (the sortie's
+  /// way home, at the layer the server gave it: airspace.hpp), so a vehicle going
+  /// home by itself (low battery, lost link) flies the layer the server predicts;
+  /// without a mission, the altitude it was flying to. Never below the take-off
+  /// altitude, m.
+  double ReturnAltitudeM() const;
+  /// Applies a standing avoid order (CommandType::kAvoid) to `setpoint`.
+  void ApplyAvoid(Nanos now, CascadeSetpoint& setpoint);
   CascadeSetpoint Behave(Nanos now, std::optional<common::Micros> nav_dt);
   double Param(ParamId id) const { return static_cast<double>(params_.Get(id)); }
   void CheckSafety(Nanos now);
@@ -149,6 +158,10 @@ class Vehicle final : public radio::VehicleRequestHandler {
   Nanos land_progress_at_{0};         ///< when it last fell kLandProgressM lower
   bool link_lost_ = false;
   bool low_battery_ = false;
+  /// The server's avoid order: fly at this altitude until avoid_until_, whatever
+  /// the mode says (a landing waits level meanwhile).
+  std::optional<double> avoid_altitude_m_;
+  Nanos avoid_until_{0};
 };
 
 }  // namespace fireswarm::agents

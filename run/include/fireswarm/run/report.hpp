@@ -90,6 +90,38 @@ struct RadioOutcome {
   std::uint64_t reports_lost = 0;      ///< queued but never received by the run's end
 };
 
+/// The closest two flying vehicles came, as the scorer sampled them (truth).
+struct ClosestApproach {
+  double t_s = 0.0;
+  int vehicle_a = 0;
+  int vehicle_b = 0;
+  double distance_m = 0.0;  ///< 3-D
+  double altitude_a_m = 0.0;
+  double altitude_b_m = 0.0;
+};
+
+/// How the server kept the drones apart (server/airspace.hpp, server/traffic.hpp).
+struct SeparationOutcome {
+  std::string rule;             ///< the strategic rule the plan used, in words
+  double separation_m = 0.0;    ///< the limit
+  std::uint64_t conflicts = 0;  ///< predicted by the tactical watch
+  std::uint64_t orders = 0;     ///< resolutions sent over the radio
+  std::uint64_t resolved = 0;   ///< passed apart
+  std::uint64_t lost_separation = 0;  ///< passed closer than the limit, as reported
+  std::optional<ClosestApproach> closest;  ///< where min_separation_m was sampled
+  /// The conflicts that lost separation: when detected, the pair, the closest
+  /// they were reported, what was ordered ("climb", "descend", "level", "none").
+  struct Lost {
+    double detected_s = 0.0;
+    int vehicle_a = 0;
+    int vehicle_b = 0;
+    double reported_min_m = 0.0;
+    std::string resolution;
+    int mover = 0;
+  };
+  std::vector<Lost> lost;
+};
+
 struct VehicleOutcome {
   double distance_m = 0.0;    ///< flown, truth
   double battery_used = 0.0;  ///< fraction of a full charge of the pack in at the end, truth
@@ -123,6 +155,7 @@ struct Report {
   std::vector<std::pair<double, double>> coverage_over_time;  ///< (t_s, fraction)
   std::vector<Collision> collisions;
   std::optional<double> min_separation_m;  ///< between any two airborne vehicles
+  SeparationOutcome separation;
   RadioOutcome radio;
   std::map<int, VehicleOutcome> vehicles;  ///< by receiver ID
   double sim_seconds = 0.0;

@@ -19,6 +19,7 @@
 #include "fireswarm/planner/plan.hpp"
 #include "fireswarm/radio/discipline.hpp"
 #include "fireswarm/radio/frame.hpp"
+#include "fireswarm/server/traffic.hpp"
 
 namespace fireswarm::run {
 
@@ -202,6 +203,9 @@ struct Scenario {
   std::optional<std::filesystem::path> no_fly_geojson;
   FleetConfig fleet;
   RadioConfig radio;
+  /// `separation`: the limit, the altitude layers and the tactical watch
+  /// (server::SeparationConfig; its defaults when absent).
+  server::SeparationConfig separation;
   std::vector<FireSpec> fires;
   std::optional<RandomFiresSpec> random_fires;
   std::vector<DistractorSpec> distractors;

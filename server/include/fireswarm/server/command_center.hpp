@@ -17,6 +17,7 @@
 #include <utility>
 
 #include "fireswarm/command_status_t.hpp"
+#include "fireswarm/conflict_t.hpp"
 #include "fireswarm/common/local_frame.hpp"
 #include "fireswarm/fire_track_list_t.hpp"
 #include "fireswarm/mission_status_t.hpp"
@@ -28,6 +29,7 @@ namespace fireswarm::server {
 
 namespace internal {
 class AlertLog;
+class ConflictWatch;
 class CoverageRaster;
 class SeparationWatch;
 }  // namespace internal
@@ -67,6 +69,10 @@ class CommandCenter {
   /// A command's status; a refused one's (command_id 0, `refusal` given) counts
   /// as NoteRefused.
   void OnCommandStatus(const command_status_t& message);
+  /// A conflict of the server's tactical watch: an alert when it is predicted,
+  /// when a drone is ordered out of it, and when it is over (critical when the
+  /// pair came closer than the limit); the state's "conflicts" counts them.
+  void OnConflict(const conflict_t& message);
   /// Counts a command the web adapter refused (the state's `refused`).
   void NoteRefused();
 
@@ -137,6 +143,8 @@ class CommandCenter {
 
   std::unique_ptr<internal::AlertLog> alerts_;
   std::unique_ptr<internal::SeparationWatch> separation_;
+  std::unique_ptr<internal::ConflictWatch> conflicts_;
+  bool conflicts_changed_ = false;
   std::unique_ptr<internal::CoverageRaster> coverage_;
   std::uint64_t coverage_version_ = 0;
 };

@@ -14,6 +14,7 @@
 #include "fireswarm/common/local_frame.hpp"
 #include "fireswarm/server/command_auth.hpp"
 #include "fireswarm/server/fire_fusion.hpp"
+#include "fireswarm/server/airspace.hpp"
 #include "fireswarm/server/mission_manager.hpp"
 #include "fireswarm/server/mission_state.hpp"
 #include "fireswarm/server/operator_command.hpp"
@@ -29,6 +30,8 @@ struct VehicleAdded {
 /// The mission was loaded, one drone mission per vehicle.
 struct MissionLoaded {
   std::vector<DroneMission> drones;
+  /// The altitude layers the drones were given (airspace.hpp), when they were.
+  std::optional<AirspacePlan> airspace;
 };
 
 /// An operator command was carried out (start, abort, return all, an

@@ -6,7 +6,10 @@
 // [lat_deg, lon_deg, altitude_m, speed_mps, flags]); every data object also
 // holds "radio_seq", the radio's next sequence number:
 //   vehicle            {"id"}
-//   mission            {"drones": [{"vehicle", "mission_id", "waypoints"}]}
+//   mission            {"drones": [{"vehicle", "mission_id", "waypoints"}], "airspace"?:
+//                      {"rule", "base_altitude_m", "layer_m", "search_layers",
+//                       "transit_sectors", "drones": [{"vehicle", "search_layer",
+//                       "search_altitude_m"}]}}
 //   start, abort, return_all, investigate_order (investigate and retask), hold,
 //   resume, return, land, hold_all, resume_all
 //                      {"command", "vehicle", "lat_deg", "lon_deg", "reason",

@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "fireswarm/command_status_t.hpp"
+#include "fireswarm/conflict_t.hpp"
 #include "fireswarm/fire_track_list_t.hpp"
 #include "fireswarm/mission_status_t.hpp"
 #include "fireswarm/operator_command_t.hpp"
@@ -52,6 +53,7 @@ inline constexpr const char* kRadioStatsChannel = "FIRESWARM_RADIO_STATS";
 inline constexpr const char* kOperatorCommandChannel = "FIRESWARM_OPERATOR_COMMAND";
 inline constexpr const char* kCommandStatusChannel = "FIRESWARM_COMMAND_STATUS";
 inline constexpr const char* kPlanChannel = "FIRESWARM_PLAN";
+inline constexpr const char* kConflictChannel = "FIRESWARM_CONFLICTS";
 
 /// Publication rates, Hz (0 = not published).
 struct LcmRates {
@@ -99,6 +101,9 @@ command_status_t ToCommandStatus(const CommandRecord& record, std::int64_t utime
                                  std::int64_t utime_at_zero);
 /// A refused command's status: command_id 0, no targets, `refusal` = its why.
 command_status_t ToCommandStatus(const CommandRefused& refusal, std::int64_t utime);
+/// One conflict of the tactical watch (traffic.hpp); its times converted with
+/// utime = `utime_at_zero` + seconds * 1e6.
+conflict_t ToConflict(const Conflict& conflict, std::int64_t utime, std::int64_t utime_at_zero);
 /// An operator's command as the server takes it; nullopt (with the reason in
 /// `why`) when the command constant is unknown or a field is out of range.
 /// Lossless for the commands it takes (MAC input: command_auth.hpp).
@@ -133,9 +138,9 @@ class LcmBridge {
   LcmBridge& operator=(const LcmBridge&) = delete;
 
   /// Publishes (and logs, and writes to CSV) every message type whose period has
-  /// come round at `now_s` (mission seconds), and a command_status_t for every
-  /// command accepted or changed, and every refusal, since the last call;
-  /// `utime` stamps them.
+  /// come round at `now_s` (mission seconds), a command_status_t for every
+  /// command accepted or changed, and every refusal, and a conflict_t for every
+  /// conflict detected, resolved or closed, since the last call; `utime` stamps them.
   void Publish(const Server& server, double now_s, std::int64_t utime, std::int64_t utime_at_zero);
   /// Operator commands received since the last call (handles pending LCM
   /// traffic without blocking), for Server::HandleSigned; malformed ones come as
@@ -166,6 +171,7 @@ class LcmBridge {
   double previous_radio_stats_s_ = 0.0;
   std::vector<IncomingCommand> commands_;
   std::uint64_t commands_version_ = 0;    // Server::commands_version() last published
+  std::uint64_t traffic_version_ = 0;     // TrafficControl::version() last published
   std::uint64_t refusals_published_ = 0;  // Server::refusal_count() last published
   std::uint64_t published_ = 0;
   std::uint64_t rejected_commands_ = 0;

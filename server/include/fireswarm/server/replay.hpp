@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "fireswarm/command_status_t.hpp"
+#include "fireswarm/conflict_t.hpp"
 #include "fireswarm/fire_track_list_t.hpp"
 #include "fireswarm/mission_status_t.hpp"
 #include "fireswarm/plan_t.hpp"
@@ -22,7 +23,7 @@ namespace fireswarm::server {
 
 /// One decoded message of the log.
 using ReplayMessage = std::variant<plan_t, vehicle_state_t, fire_track_list_t, mission_status_t,
-                                   radio_stats_t, command_status_t>;
+                                   radio_stats_t, command_status_t, conflict_t>;
 
 /// A message and its time: its own `utime` in seconds (the publisher's clock,
 /// docs/lcm.md), not the time the log writer received it.

@@ -62,6 +62,7 @@
 #include "fireswarm/planner/geometry.hpp"
 #include "fireswarm/planner/transit.hpp"
 #include "fireswarm/radio/master_scheduler.hpp"
+#include "fireswarm/server/airspace.hpp"
 #include "fireswarm/server/command_auth.hpp"
 #include "fireswarm/server/command_status.hpp"
 #include "fireswarm/server/fire_fusion.hpp"
@@ -153,7 +154,12 @@ class Server {
   /// The mission to fly (one per registered vehicle at most). Throws
   /// std::invalid_argument when a drone's vehicle is not registered or a mission
   /// is already loaded.
-  void LoadMission(std::vector<DroneMission> missions, double now_s = 0.0);
+  /// `airspace`: the layers AssignAirspace gave the missions, journaled with
+  /// them and used for the legs the server makes up later (investigations).
+  void LoadMission(std::vector<DroneMission> missions, double now_s = 0.0,
+                   std::optional<AirspacePlan> airspace = std::nullopt);
+  /// The layers of the loaded mission, if it was given them.
+  const std::optional<AirspacePlan>& airspace() const { return airspace_; }
 
   /// Carries out an operator's command at `now`. Returns false (and journals
   /// nothing) when it cannot be done now, with the reason in `why` if given:
@@ -239,6 +245,11 @@ class Server {
   void Attribute(std::int32_t command_id, const CommandCredentials& signer);
   void OnEvent(const radio::SchedulerEvent& event, double now_s);
   void MarkCoverage(const radio::Telemetry& telemetry, const Eigen::Vector2d& where_en_m);
+  void WatchTraffic(std::uint8_t vehicle, const radio::Telemetry& telemetry,
+                    const Eigen::Vector2d& where_en_m, double now_s);
+  void ResolveConflicts(double now_s);
+  // Where `vehicle` in `mode` climbs or descends to by itself (TrafficSample).
+  std::optional<double> IntentAltitudeM(std::uint8_t vehicle, radio::FlightMode mode) const;
   void OnFireReport(const radio::FireReportReceived& received, double now_s);
   void AfterFusion(const FireObservation& observation, const FireReportResult& result,
                    double now_s);
@@ -273,6 +284,7 @@ class Server {
   std::optional<MissionManager> mission_;
   std::optional<planner::CoverageGrid> coverage_;  // with ServerConfig::area only
   TrafficControl traffic_;
+  std::optional<AirspacePlan> airspace_;
   MissionState state_ = MissionState::kIdle;
   double mission_started_s_ = 0.0;
   // Drones given up as lost whose lanes went to others -> ordered home since

@@ -57,6 +57,11 @@ struct TrafficSample {
   Eigen::Vector3d position_m = Eigen::Vector3d::Zero();  ///< east, north, up
   Eigen::Vector3d velocity_mps = Eigen::Vector3d::Zero();
   double at_s = 0.0;  ///< mission time the sample describes
+  /// Where the drone is climbing or descending to by itself, m: a take-off's
+  /// climb-out altitude, a landing's ground (0), a return's way-home layer.
+  /// Predicted all the way there; without it a reported climb is carried on for
+  /// a few seconds only (a change of layer ends soon).
+  std::optional<double> intent_altitude_m;
 };
 
 enum class Resolution : std::uint8_t {
@@ -125,12 +130,16 @@ class TrafficControl {
   /// way until `until_s`.
   void ExpectLost(int vehicle, const TrafficSample& last, const Eigen::Vector2d& home_m,
                   double altitude_m, double speed_mps, double until_s);
-  /// The altitude a drone flies when no order holds it, for the predictions of
-  /// a drone that is about to change layers (its next waypoint's), m.
-  void SetIntent(int vehicle, std::optional<double> altitude_m);
+  /// Whether `vehicle` is watched as flying (not lost, not on the ground).
+  bool Flying(int vehicle) const { return tracks_.contains(vehicle); }
+  bool Lost(int vehicle) const { return ghosts_.contains(vehicle); }
 
   /// Predicts, opens and closes conflicts at `now_s`; the orders to send now.
+  /// Runs at most every kStepS (earlier calls return nothing).
   std::vector<AvoidOrder> Step(double now_s);
+  static constexpr double kStepS = 0.5;
+  /// Whether Step(now_s) would run (kStepS since the last that did).
+  bool Due(double now_s) const { return now_s >= last_step_s_ + kStepS; }
 
   const std::vector<Conflict>& conflicts() const { return conflicts_; }
   /// Rises whenever a conflict is added or changes.
@@ -141,7 +150,6 @@ class TrafficControl {
  private:
   SeparationConfig config_;
   std::map<int, TrafficSample> tracks_;
-  std::map<int, std::optional<double>> intents_;
   struct Ghost {
     TrafficSample last;
     Eigen::Vector2d home_m = Eigen::Vector2d::Zero();
@@ -153,9 +161,12 @@ class TrafficControl {
   struct Held {
     double altitude_m = 0.0;
     double until_s = 0.0;
+    double from_s = 0.0;  // when it was ordered
   };
   std::map<int, Held> orders_;                       // vehicle -> its standing avoid order
   std::map<std::pair<int, int>, std::size_t> open_;  // pair -> index in conflicts_
+  std::map<std::pair<int, int>, double> last_order_s_;  // pair -> when it was last resolved
+  double last_step_s_ = -1.0e9;
   std::vector<Conflict> conflicts_;
   std::uint64_t version_ = 0;
   TrafficCounts counts_;
