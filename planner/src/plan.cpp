@@ -107,7 +107,10 @@ void ValidateFleet(const SearchArea& area, const FleetSpec& fleet) {
                     "], got " + std::to_string(value));
   };
   in_range("speed_mps", fleet.speed_mps, 0.0, true, kMaxSpeedMps);
-  in_range("endurance_s", fleet.endurance_s, 0.0, true, kMaxEnduranceS);
+  // Not bounded above here: a long endurance only means fewer sorties (tests and
+  // plan_bench use one flight each); the flags and scenario keys bound it.
+  Require(fleet.endurance_s > 0.0 && std::isfinite(fleet.endurance_s),
+          "endurance_s must be > 0, got " + std::to_string(fleet.endurance_s));
   in_range("swap_s", fleet.swap_s, 0.0, false, kMaxSwapS);
   in_range("climb_mps", fleet.climb_mps, 0.0, true, kMaxVerticalMps);
   in_range("descent_mps", fleet.descent_mps, 0.0, true, kMaxVerticalMps);
