@@ -1,33 +1,20 @@
 #include "air_capture.hpp"
 
-#include <cerrno>
 #include <chrono>
-#include <cstdio>
-#include <cstring>
 #include <fstream>
 #include <lcm/lcm-cpp.hpp>
 #include <stdexcept>
 #include <vector>
 
+#include "fireswarm/common/output_files.hpp"
 #include "fireswarm/common/time.hpp"
 #include "fireswarm/radio_frame_t.hpp"
 
 namespace fireswarm::app {
 namespace {
 
-std::string PartialPath(const std::string& path) {
-  return path + ".partial";
-}
-
 std::int64_t Micros(common::Nanos t) {
   return std::chrono::duration_cast<std::chrono::microseconds>(t).count();
-}
-
-void MoveIntoPlace(const std::string& path) {
-  if (std::rename(PartialPath(path).c_str(), path.c_str()) != 0) {
-    throw std::runtime_error("cannot move " + PartialPath(path) + " to " + path + ": " +
-                             std::strerror(errno));
-  }
 }
 
 }  // namespace
@@ -38,7 +25,7 @@ struct AirCapture::Files {
   std::ofstream raw;
   std::unique_ptr<lcm::LogFile> log;
   std::vector<std::uint8_t> encoded;  // reused for every event
-  bool committed = false;
+  common::OutputFiles output;         // the temporaries, renamed into place by Commit()
 };
 
 AirCapture::AirCapture(std::optional<std::string> raw_path, std::optional<std::string> lcm_log_path)
@@ -46,24 +33,18 @@ AirCapture::AirCapture(std::optional<std::string> raw_path, std::optional<std::s
   files_->raw_path = std::move(raw_path);
   files_->lcm_log_path = std::move(lcm_log_path);
   if (files_->raw_path) {
-    files_->raw.open(PartialPath(*files_->raw_path), std::ios::binary | std::ios::trunc);
+    files_->raw.open(files_->output.Reserve(*files_->raw_path), std::ios::binary | std::ios::trunc);
     if (!files_->raw) throw std::runtime_error("cannot write capture " + *files_->raw_path);
   }
   if (files_->lcm_log_path) {
-    files_->log = std::make_unique<lcm::LogFile>(PartialPath(*files_->lcm_log_path), "w");
+    files_->log = std::make_unique<lcm::LogFile>(files_->output.Reserve(*files_->lcm_log_path), "w");
     if (!files_->log->good())
       throw std::runtime_error("cannot write LCM log " + *files_->lcm_log_path);
   }
 }
 
-AirCapture::~AirCapture() {
-  if (files_->committed) return;
-  // A run that did not finish leaves no partial files behind.
-  files_->raw.close();
-  files_->log.reset();
-  if (files_->raw_path) std::remove(PartialPath(*files_->raw_path).c_str());
-  if (files_->lcm_log_path) std::remove(PartialPath(*files_->lcm_log_path).c_str());
-}
+// A run that did not finish leaves no partial files behind: OutputFiles removes them.
+AirCapture::~AirCapture() = default;
 
 void AirCapture::Record(const radio::AirRecord& record) {
   if (files_->raw_path && !record.collided) {
@@ -101,13 +82,9 @@ void AirCapture::Commit() {
   if (files_->raw_path) {
     files_->raw.close();
     if (!files_->raw) throw std::runtime_error("cannot finish capture " + *files_->raw_path);
-    MoveIntoPlace(*files_->raw_path);
   }
-  if (files_->lcm_log_path) {
-    files_->log.reset();  // closes the file
-    MoveIntoPlace(*files_->lcm_log_path);
-  }
-  files_->committed = true;
+  files_->log.reset();  // closes the file
+  files_->output.Commit();
 }
 
 }  // namespace fireswarm::app

@@ -22,7 +22,8 @@ inline constexpr const char* kAirLcmChannel = "RADIO_AIR";
 
 class AirCapture {
  public:
-  /// Opens the temporary files. Throws std::runtime_error naming a path that cannot be written.
+  /// Opens the temporary files (common::OutputFiles). Throws std::runtime_error
+  /// naming a path that cannot be written or is not a regular file.
   AirCapture(std::optional<std::string> raw_path, std::optional<std::string> lcm_log_path);
   ~AirCapture();
   AirCapture(const AirCapture&) = delete;

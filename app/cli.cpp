@@ -3,6 +3,9 @@
 #include <cmath>
 #include <iostream>
 #include <sstream>
+#include <system_error>
+
+#include "fireswarm/common/output_files.hpp"
 
 namespace fireswarm::app {
 
@@ -33,6 +36,36 @@ void ThrowBadFlag(const std::string& command, const std::string& flag,
                   const std::string& requirement, const std::string& got) {
   throw UsageError("fireswarm " + command + ": --" + flag + " must be " + requirement + ", got '" +
                    got + "'");
+}
+
+void CheckOutputFlags(const std::string& command, const std::vector<OutputFlag>& outputs,
+                      const std::vector<std::filesystem::path>& inputs) {
+  for (std::size_t i = 0; i < outputs.size(); ++i) {
+    const OutputFlag& output = outputs[i];
+    if (output.path.empty()) continue;
+    const auto fail = [&](const std::string& problem) {
+      throw UsageError("fireswarm " + command + ": --" + output.flag + " " + output.path + ": " +
+                       problem);
+    };
+    if (const auto problem = common::OutputPathProblem(output.path, inputs)) fail(*problem);
+    for (std::size_t j = 0; j < i; ++j) {
+      std::error_code error;
+      if (outputs[j].path == output.path ||
+          std::filesystem::equivalent(outputs[j].path, output.path, error)) {
+        fail("is also --" + outputs[j].flag);
+      }
+    }
+  }
+}
+
+void CheckFlagRange(const std::string& command, const std::string& flag, double value,
+                    const FlagRange& range) {
+  const bool above_min = range.min_open ? value > range.min : value >= range.min;
+  if (std::isfinite(value) && above_min && value <= range.max) return;
+  ThrowBadFlag(command, flag,
+               std::string("in ") + (range.min_open ? "(" : "[") + FlagText(range.min) + ", " +
+                   FlagText(range.max) + "]",
+               FlagText(value));
 }
 
 std::string FlagText(double value) {

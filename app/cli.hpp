@@ -3,6 +3,7 @@
 #pragma once
 
 #include <boost/program_options.hpp>
+#include <filesystem>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -43,6 +44,35 @@ bool ParseCommandLine(const std::string& command_name, const std::string& usage_
 /// Throws UsageError "fireswarm <command>: --<flag> must be <requirement>, got '<got>'".
 [[noreturn]] void ThrowBadFlag(const std::string& command, const std::string& flag,
                                const std::string& requirement, const std::string& got);
+
+/// One output of a command: its flag (without "--") and the path given; an
+/// empty path means the output was not asked for.
+struct OutputFlag {
+  std::string flag;
+  std::string path;
+};
+
+/// Checks every output before the command reads or computes anything
+/// (common::OutputPathProblem against `inputs`), and that no two flags name the
+/// same file. Throws UsageError "fireswarm <command>: --<flag> <path>: <problem>".
+void CheckOutputFlags(const std::string& command, const std::vector<OutputFlag>& outputs,
+                      const std::vector<std::filesystem::path>& inputs);
+
+/// A numeric flag's documented range (docs/limits.md): [min, max], or (min, max]
+/// when `min_open`.
+struct FlagRange {
+  double min = 0.0;
+  double max = 0.0;
+  bool min_open = false;
+};
+
+/// Throws UsageError "fireswarm <command>: --<flag> must be in [min, max], got
+/// '<value>'" when `value` is outside `range` or not finite.
+void CheckFlagRange(const std::string& command, const std::string& flag, double value,
+                    const FlagRange& range);
+
+/// The longest wall-clock or simulated --duration-s a command takes, s (30 days).
+inline constexpr double kMaxCommandDurationS = 30.0 * 86'400.0;
 
 /// A number as flag messages show it (as an ostream prints it: 0.5, 1e+06).
 std::string FlagText(double value);

@@ -26,6 +26,9 @@ void AddLinkOptions(po::options_description& options, LinkFlags& f) {
       "print 'bound_port=<port>' on stdout once the UDP link is bound");
 }
 
+// The fastest serial line a modem is driven at (docs/limits.md).
+constexpr double kMaxSerialBaud = 4'000'000.0;
+
 void CheckLinkFlags(const std::string& command, const LinkFlags& f,
                     const po::variables_map& values) {
   const std::string prefix = "fireswarm " + command + ": ";
@@ -44,6 +47,7 @@ void CheckLinkFlags(const std::string& command, const LinkFlags& f,
   if (!serial && !values["baud"].defaulted()) {
     throw UsageError(prefix + "--baud goes with --serial");
   }
+  CheckFlagRange(command, "baud", f.baud, {1.0, kMaxSerialBaud});
   if (f.print_bound_port && !udp) {
     throw UsageError(prefix + "--print-bound-port goes with --udp");
   }

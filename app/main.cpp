@@ -4,6 +4,7 @@
 #include <array>
 #include <exception>
 #include <iostream>
+#include <new>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -67,6 +68,13 @@ int main(int argc, char** argv) {
       return command.run(std::vector<std::string>(words.begin() + 1, words.end()));
     } catch (const fireswarm::app::UsageError& e) {
       std::cerr << e.what() << "\n";
+      return fireswarm::app::kExitBadInput;
+    } catch (const std::bad_alloc&) {
+      // A last resort: every input that sizes the work has a documented limit
+      // (docs/limits.md) checked before the work starts.
+      std::cerr << "fireswarm " << command.name
+                << ": out of memory while running the command; see docs/limits.md for the "
+                   "limits of its flags and inputs\n";
       return fireswarm::app::kExitBadInput;
     } catch (const std::exception& e) {
       std::cerr << "fireswarm " << command.name << ": " << e.what() << "\n";

@@ -9,12 +9,13 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <system_error>
 #include <utility>
 #include <vector>
 
 #include "cli.hpp"
 #include "commands.hpp"
-#include "fireswarm/common/atomic_file.hpp"
+#include "fireswarm/common/output_files.hpp"
 #include "fireswarm/common/camera_model.hpp"
 #include "fireswarm/planner/area_io.hpp"
 #include "fireswarm/planner/export.hpp"
@@ -115,17 +116,17 @@ void CheckFlags(const Flags& f) {
   if (f.drones < 1 || f.drones > kMaxDrones) {
     BadFlag("drones", "must be in 1..254, got " + std::to_string(f.drones));
   }
-  if (!(f.altitude_m > 0)) BadFlag("altitude-m", "must be > 0, got " + Text(f.altitude_m));
-  if (!(f.speed_mps > 0)) BadFlag("speed-mps", "must be > 0, got " + Text(f.speed_mps));
-  if (!(f.endurance_s > 0)) BadFlag("endurance-s", "must be > 0, got " + Text(f.endurance_s));
-  if (!(f.swap_s >= 0)) BadFlag("swap-s", "must be >= 0, got " + Text(f.swap_s));
-  if (!(f.climb_mps > 0)) BadFlag("climb-mps", "must be > 0, got " + Text(f.climb_mps));
-  if (!(f.descent_mps > 0)) BadFlag("descent-mps", "must be > 0, got " + Text(f.descent_mps));
+  CheckFlagRange(kName, "altitude-m", f.altitude_m, {0.0, planner::kMaxAltitudeM, true});
+  CheckFlagRange(kName, "speed-mps", f.speed_mps, {0.0, planner::kMaxSpeedMps, true});
+  CheckFlagRange(kName, "endurance-s", f.endurance_s, {0.0, planner::kMaxEnduranceS, true});
+  CheckFlagRange(kName, "swap-s", f.swap_s, {0.0, planner::kMaxSwapS});
+  CheckFlagRange(kName, "climb-mps", f.climb_mps, {0.0, planner::kMaxVerticalMps, true});
+  CheckFlagRange(kName, "descent-mps", f.descent_mps, {0.0, planner::kMaxVerticalMps, true});
   CheckLaunchFlags("plan", f.launch, f.launch_file);
   if (!(f.overlap >= 0 && f.overlap < 1)) {
     BadFlag("overlap", "must be in [0, 1), got " + Text(f.overlap));
   }
-  if (!(f.turn_cost_s >= 0)) BadFlag("turn-cost-s", "must be >= 0, got " + Text(f.turn_cost_s));
+  CheckFlagRange(kName, "turn-cost-s", f.turn_cost_s, {0.0, planner::kMaxTurnCostS});
   if (!(f.camera_pitch_deg >= -90 && f.camera_pitch_deg < 0)) {
     BadFlag("camera-pitch-deg", "must be in [-90, 0), got " + Text(f.camera_pitch_deg));
   }
@@ -135,12 +136,16 @@ void CheckFlags(const Flags& f) {
   if (f.planner != "lawnmower" && f.planner != "ompl") {
     BadFlag("planner", "must be lawnmower or ompl, got '" + f.planner + "'");
   }
-  const fs::path out_dir = fs::absolute(f.out).parent_path();
-  if (!fs::is_directory(out_dir)) {
-    BadFlag("out", "names a directory that does not exist: " + out_dir.string());
-  }
-  if (!f.qgc.empty() && fs::exists(f.qgc) && !fs::is_directory(f.qgc)) {
-    BadFlag("qgc", "must be a directory, got the file " + f.qgc);
+  CheckOutputFlags(kName, {{"out", f.out}}, {f.area, f.no_fly, f.launch_file});
+  if (!f.qgc.empty()) {
+    std::error_code error;
+    const fs::file_status status = fs::symlink_status(f.qgc, error);
+    if (status.type() == fs::file_type::not_found) {
+      // Created when the plan is written: its parent must take it.
+      CheckOutputFlags(kName, {{"qgc", f.qgc}}, {});
+    } else if (status.type() != fs::file_type::directory) {
+      BadFlag("qgc", "must be a directory, got " + f.qgc + " (not a directory)");
+    }
   }
 }
 
@@ -305,19 +310,25 @@ int RunPlan(const std::vector<std::string>& args) {
     throw UsageError("fireswarm plan: " + InFlagTerms(e.what()));
   }
 
-  // Every text is built before the first file is touched; each file is replaced atomically.
+  // Every text is built before the first file is touched; all files or none are written.
   const std::string geojson = planner::PlanToGeoJson(plan, area, fleet);
   const std::vector<planner::QgcPlanFile> qgc =
       f.qgc.empty() ? std::vector<planner::QgcPlanFile>{} : planner::PlanToQgc(plan, area, fleet);
   std::vector<fs::path> qgc_files;
-  if (!f.qgc.empty()) {
-    fs::create_directories(f.qgc);
+  common::OutputFiles output;
+  const bool made_qgc_dir = !f.qgc.empty() && fs::create_directory(f.qgc);
+  try {
     for (const planner::QgcPlanFile& file : qgc) {
       qgc_files.push_back(fs::path(f.qgc) / file.file_name);
-      common::WriteFileAtomically(qgc_files.back(), file.json);
+      output.Stage(qgc_files.back(), file.json);
     }
+    output.Stage(f.out, geojson);
+    output.Commit();
+  } catch (const std::exception&) {
+    std::error_code ignored;
+    if (made_qgc_dir && fs::is_empty(f.qgc, ignored)) fs::remove(f.qgc, ignored);
+    throw;
   }
-  common::WriteFileAtomically(f.out, geojson);
 
   if (f.json) {
     std::cout << ToJson(f, plan, qgc_files).dump() << "\n";

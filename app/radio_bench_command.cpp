@@ -253,6 +253,7 @@ int RunRadioBench(const std::vector<std::string>& args) {
   po::variables_map values;
   if (!ParseCommandLine(kName, "[options]", options, {}, args, values)) return kExitOk;
   const RadioBenchConfig config = ToConfig(f);
+  CheckOutputFlags(kName, {{"capture", f.capture}, {"lcm-log", f.lcm_log}}, {});
 
   std::optional<AirCapture> capture;
   if (!f.capture.empty() || !f.lcm_log.empty()) {

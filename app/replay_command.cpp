@@ -41,8 +41,8 @@ void CheckFlags(const Flags& f) {
   if (!(f.speed > 0.0 && f.speed <= ReplayFeed::kMaxSpeed)) {
     ThrowBadFlag(kName, "speed", "in (0, 1000]", FlagText(f.speed));
   }
-  if (f.duration_s && !(*f.duration_s > 0.0)) {
-    ThrowBadFlag(kName, "duration-s", "> 0", FlagText(*f.duration_s));
+  if (f.duration_s) {
+    CheckFlagRange(kName, "duration-s", *f.duration_s, {0.0, kMaxCommandDurationS, true});
   }
   CheckWebFlags(kName, f.web);
   if (f.web.http.empty()) {

@@ -36,7 +36,7 @@
 
 #include "cli.hpp"
 #include "commands.hpp"
-#include "fireswarm/common/atomic_file.hpp"
+#include "fireswarm/common/output_files.hpp"
 #include "fireswarm/common/time.hpp"
 #include "fireswarm/run/junit.hpp"
 #include "fireswarm/run/report_json.hpp"
@@ -59,6 +59,8 @@ constexpr const char* kName = "run";
 /// simulated microseconds (1970-01-01 to a tool that shows them as dates).
 constexpr std::int64_t kUtimeAtSimZero = 0;
 constexpr int kBarWidth = 30;
+/// --pace above this is no pacing at all (a run goes at ~1000x on its own).
+constexpr double kMaxPace = 1e6;
 /// The progress line is redrawn at most this often (a small run goes at ~1000x).
 constexpr std::chrono::milliseconds kRedrawPeriod{100};
 
@@ -109,57 +111,39 @@ void CheckFlags(const Flags& f, const po::variables_map& values) {
     }
   }
   CheckWebFlags(kName, f.web);
-  if (f.pace && !(*f.pace > 0.0 && std::isfinite(*f.pace))) {
-    ThrowBadFlag(kName, "pace", "> 0 (simulated s per wall s)", FlagText(*f.pace));
-  }
+  if (f.pace) CheckFlagRange(kName, "pace", *f.pace, {0.0, kMaxPace, true});
   if (values.count("lcm") != 0 && f.lcm_url.empty()) {
     throw UsageError("fireswarm run: --lcm needs a URL, e.g. udpm://239.255.76.67:7667?ttl=0");
-  }
-  if (!f.log.empty()) {
-    const fs::path log(f.log);
-    const fs::path directory = log.has_parent_path() ? log.parent_path() : fs::path(".");
-    std::error_code error;
-    if (!fs::is_directory(directory, error)) {
-      throw UsageError("fireswarm run: --log " + f.log + ": the directory " + directory.string() +
-                       " does not exist");
-    }
-    if (fs::is_directory(log, error)) {
-      throw UsageError("fireswarm run: --log " + f.log + ": is a directory");
-    }
   }
 }
 
 // --log and --lcm: the server published through server::LcmBridge on simulated
-// time. The bridge writes the log to a scratch sibling; Finish() renames it into
-// place, so a run that fails or is cut short leaves no log, and a reader never
-// sees half of one.
+// time. The bridge writes the log to a temporary of the run's OutputFiles, renamed
+// into place with the other outputs, so a run that fails or is cut short leaves
+// no log, and a reader never sees half of one.
 class RunLcmOutput {
  public:
-  /// Creates the scratch log and opens the LCM URL. Throws UsageError naming
-  /// --log or --lcm when either cannot be opened. Precondition: CheckFlags passed.
-  RunLcmOutput(const std::string& log_path, const std::string& url)
+  /// Opens the LCM URL and the log's temporary `scratch` (empty: no log). Throws
+  /// UsageError naming --log or --lcm when either cannot be opened.
+  RunLcmOutput(const std::string& log_path, const fs::path& scratch, const std::string& url)
       : log_path_(log_path), url_(url) {
     server::LcmBridgeConfig config;
     config.url = url;
     if (!log_path.empty()) {
-      scratch_ = log_path_;
-      scratch_ += ".events." + std::to_string(::getpid());
       // Created here, so that a failure of the bridge below can only be the URL's.
-      if (!std::ofstream(scratch_)) {
+      if (!std::ofstream(scratch)) {
         throw UsageError("fireswarm run: --log " + log_path + ": cannot create " +
-                         scratch_.string() + ": " + std::strerror(errno));
+                         scratch.string() + ": " + std::strerror(errno));
       }
-      config.log_path = scratch_;
+      config.log_path = scratch;
     }
     try {
       bridge_.emplace(config);
     } catch (const std::exception& e) {
-      RemoveScratch();
       throw UsageError(std::string("fireswarm run: ") + (url.empty() ? "--log: " : "--lcm: ") +
                        e.what());
     }
   }
-  ~RunLcmOutput() { RemoveScratch(); }
   RunLcmOutput(const RunLcmOutput&) = delete;
   RunLcmOutput& operator=(const RunLcmOutput&) = delete;
 
@@ -171,18 +155,10 @@ class RunLcmOutput {
     bridge_->Publish(server, t_s, utime, kUtimeAtSimZero);
   }
 
-  /// Closes the scratch log and renames it into place (same directory: atomic).
-  /// Throws std::runtime_error naming the log.
+  /// Closes the log's temporary; OutputFiles::Commit() moves it into place.
   void Finish() {
     published_ = bridge_->published();
-    bridge_.reset();  // closes the scratch log
-    if (log_path_.empty()) return;
-    std::error_code error;
-    fs::rename(scratch_, log_path_, error);
-    if (error) {
-      throw std::runtime_error(log_path_.string() + ": cannot move " + scratch_.string() +
-                               " into place: " + error.message());
-    }
+    bridge_.reset();
   }
 
   /// What Finish() ended with: the messages published (and logged), where.
@@ -197,13 +173,7 @@ class RunLcmOutput {
   }
 
  private:
-  void RemoveScratch() const {
-    std::error_code ignored;
-    if (!scratch_.empty()) fs::remove(scratch_, ignored);
-  }
-
   fs::path log_path_;
-  fs::path scratch_;  // the bridge's log until Finish()
   std::string url_;
   std::optional<server::LcmBridge> bridge_;
   std::uint64_t published_ = 0;
@@ -312,13 +282,23 @@ int RunRun(const std::vector<std::string>& args) {
     return kExitOk;
   }
   CheckFlags(f, values);
+  const std::vector<OutputFlag> outputs{
+      {"report", f.report}, {"junit", f.junit}, {"svg", f.svg}, {"log", f.log}};
+  CheckOutputFlags(kName, outputs, {f.scenario});
 
   run::Scenario scenario;
   run::RunResult result;
+  common::OutputFiles output;  // destroyed last: removes the temporaries of a failed run
   std::optional<RunLcmOutput> lcm;
   try {
     scenario = run::LoadScenario(f.scenario);
-    if (!f.log.empty() || !f.lcm_url.empty()) lcm.emplace(f.log, f.lcm_url);
+    // The scenario's GeoJSON files are inputs too.
+    CheckOutputFlags(kName, outputs,
+                     {f.scenario, scenario.area_geojson.value_or(fs::path()),
+                      scenario.no_fly_geojson.value_or(fs::path())});
+    if (!f.log.empty() || !f.lcm_url.empty()) {
+      lcm.emplace(f.log, f.log.empty() ? fs::path() : output.Reserve(f.log), f.lcm_url);
+    }
     std::map<std::string, common::SecretKey> operators;
     if (!f.keys.empty()) {
       try {
@@ -336,11 +316,11 @@ int RunRun(const std::vector<std::string>& args) {
     throw UsageError(std::string("fireswarm run: ") + e.what());
   }
   if (lcm) lcm->Finish();
-  if (!f.report.empty()) {
-    common::WriteFileAtomically(f.report, run::ToJson(result.report).dump(2) + "\n");
-  }
-  if (!f.junit.empty()) run::WriteJunit(result.report, f.junit);
-  if (!f.svg.empty()) run::WriteSvgMap(result.report, scenario, f.svg);
+  // All outputs or none: each is staged beside its target, then all are renamed.
+  if (!f.report.empty()) output.Stage(f.report, run::ToJson(result.report).dump(2) + "\n");
+  if (!f.junit.empty()) output.Stage(f.junit, run::JunitXml(result.report));
+  if (!f.svg.empty()) output.Stage(f.svg, run::SvgMap(result.report, scenario));
+  output.Commit();
   PrintSummary(result);
   if (lcm) lcm->PrintSummary();
   return result.report.AllExpectationsHold() ? kExitOk : kExitCheckFailed;

@@ -65,6 +65,7 @@ struct Flags {
   bool start = false;
   std::optional<double> duration_s;
   bool until_complete = false;
+  bool recover = false;  ///< keep a corrupt journal's valid records, move the rest aside
   WebFlags web;
 };
 
@@ -90,18 +91,28 @@ void CheckFlags(const Flags& f, const po::variables_map& values) {
             std::to_string(f.first_id));
   }
   CheckLaunchFlags(kName, f.launch, f.launch_file);
-  if (!(f.altitude_m > 0.0)) BadFlag("altitude-m", "> 0", FlagText(f.altitude_m));
-  if (!(f.speed_mps > 0.0)) BadFlag("speed-mps", "> 0", FlagText(f.speed_mps));
-  if (!(f.endurance_s > 0.0)) BadFlag("endurance-s", "> 0", FlagText(f.endurance_s));
-  if (!(f.swap_s >= 0.0)) BadFlag("swap-s", ">= 0", FlagText(f.swap_s));
+  CheckFlagRange(kName, "altitude-m", f.altitude_m, {0.0, planner::kMaxAltitudeM, true});
+  CheckFlagRange(kName, "speed-mps", f.speed_mps, {0.0, planner::kMaxSpeedMps, true});
+  CheckFlagRange(kName, "endurance-s", f.endurance_s, {0.0, planner::kMaxEnduranceS, true});
+  CheckFlagRange(kName, "swap-s", f.swap_s, {0.0, planner::kMaxSwapS});
   if (common::FindCameraModel(f.camera) == nullptr) {
     BadFlag("camera", common::CameraModelNames(), f.camera);
   }
   if (!(f.telemetry_hz > 0.0 && f.telemetry_hz <= 50.0)) {
     BadFlag("telemetry-hz", "in (0, 50]", FlagText(f.telemetry_hz));
   }
-  if (f.duration_s && !(*f.duration_s > 0.0)) BadFlag("duration-s", "> 0", FlagText(*f.duration_s));
+  if (f.duration_s) {
+    CheckFlagRange(kName, "duration-s", *f.duration_s, {0.0, kMaxCommandDurationS, true});
+  }
   CheckWebFlags(kName, f.web);
+  if (f.recover && f.journal.empty()) {
+    throw UsageError("fireswarm serve: --recover goes with --journal");
+  }
+  // --log is written as the server runs; the journal and radio state are read and
+  // appended: each must be a regular file (or new) and none of the inputs.
+  CheckOutputFlags(
+      kName, {{"log", f.log}, {"journal", f.journal}, {"radio-state", f.radio_state}},
+      {f.area, f.no_fly, f.launch_file});
   if (!f.start && f.lcm_url.empty() && f.web.http.empty()) {
     throw UsageError(
         "fireswarm serve: give --start, or --lcm URL or --http HOST:PORT to wait for an "
@@ -263,6 +274,9 @@ void PrintResumed(const server::Journal& journal, std::size_t records, const ser
   line["journal"] = journal.path().string();
   line["records"] = records;
   line["dropped_lines"] = journal.recovery().dropped_lines;
+  if (!journal.recovery().moved_aside.empty()) {
+    line["moved_aside"] = journal.recovery().moved_aside.string();
+  }
   line["state"] = server::ToString(server.state());
   line["tracks"] = server.fusion().tracks().size();
   line["t_s"] = common::ToSeconds(clock_offset);
@@ -328,6 +342,9 @@ po::options_description OptionsFor(Flags& f) {
   add("csv", po::value(&f.csv)->value_name("DIR"), "write one CSV per message type into DIR");
   add("journal", po::value(&f.journal)->value_name("FILE"),
       "append mission state and fire reports here; an existing journal is resumed");
+  add("recover", po::bool_switch(&f.recover),
+      "a journal corrupt before its last line: resume from the valid records before the bad "
+      "line and move it and every line after it to JOURNAL.corrupt (named on stderr)");
   add("radio-state", po::value(&f.radio_state)->value_name("FILE"),
       "secure mode: the frame counter and replay floors (default: JOURNAL.radio-state)");
   add("start", po::bool_switch(&f.start),
@@ -363,13 +380,29 @@ int RunServe(const std::vector<std::string>& args) {
   std::vector<server::JournalEntry> entries;
   std::optional<server::Journal> journal;
   if (!f.journal.empty()) {
-    journal.emplace(server::Journal::Open(f.journal, [&](const server::JournalRecord& record) {
+    const auto visit = [&](const server::JournalRecord& record) {
       try {
         entries.push_back(server::JournalEntryOf(record));
       } catch (const std::runtime_error& e) {
         throw std::runtime_error(f.journal + ": " + e.what());
       }
-    }));
+    };
+    try {
+      journal.emplace(server::Journal::Open(f.journal, visit, server::JournalSync::kEveryAppend,
+                                            f.recover ? server::JournalCorruption::kKeepValidPrefix
+                                                      : server::JournalCorruption::kRefuse));
+    } catch (const server::JournalCorruptError& e) {
+      throw UsageError(std::string("fireswarm serve: ") + e.what() +
+                       "; to resume from the valid records before it and move the rest aside, "
+                       "start again with --recover");
+    }
+    const server::JournalRecovery& recovery = journal->recovery();
+    if (!recovery.moved_aside.empty()) {
+      std::cerr << "fireswarm serve: WARNING: " << f.journal << ": " << recovery.corruption
+                << "; kept the " << recovery.records << " records before it and moved "
+                << recovery.dropped_lines << " lines (" << recovery.dropped_bytes
+                << " bytes) from it on to " << recovery.moved_aside.string() << std::endl;
+    }
   }
   const bool resumed = !entries.empty();
   Nanos clock_offset{0};

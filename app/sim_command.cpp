@@ -16,6 +16,7 @@
 #include "fireswarm/agents/params.hpp"
 #include "fireswarm/common/camera_model.hpp"
 #include "fireswarm/common/local_frame.hpp"
+#include "fireswarm/planner/plan.hpp"
 #include "fireswarm/radio/params.hpp"
 #include "fireswarm/server/vehicle_registry.hpp"
 #include "link_flags.hpp"
@@ -42,7 +43,6 @@ constexpr double kMinLinkLostS = 2.0;
 constexpr double kMaxLinkLostS = 600.0;
 // The ground crew's battery swap after a landing, s (run's fleet.swap_s range).
 constexpr double kDefaultSwapS = 300.0;
-constexpr double kMaxSwapS = 3'600.0;
 
 struct Flags {
   int count = 1;
@@ -78,9 +78,7 @@ void CheckFlags(const Flags& f, const po::variables_map& values) {
       !(*f.link_lost_timeout_s >= kMinLinkLostS && *f.link_lost_timeout_s <= kMaxLinkLostS)) {
     ThrowBadFlag(kName, "link-lost-timeout-s", "in [2, 600]", FlagText(*f.link_lost_timeout_s));
   }
-  if (!(f.swap_s >= 0.0 && f.swap_s <= kMaxSwapS)) {
-    ThrowBadFlag(kName, "swap-s", "in [0, 3600]", FlagText(f.swap_s));
-  }
+  CheckFlagRange(kName, "swap-s", f.swap_s, {0.0, planner::kMaxSwapS});
   RequireKeys(kName, f.link);  // last, so a flag above that is wrong is named first
 }
 

@@ -10,8 +10,8 @@
 namespace fireswarm::app {
 
 void CheckSimRunFlags(const std::string& command, const SimRunFlags& f) {
-  if (f.duration_s && !(*f.duration_s > 0.0)) {
-    ThrowBadFlag(command, "duration-s", "> 0", FlagText(*f.duration_s));
+  if (f.duration_s) {
+    CheckFlagRange(command, "duration-s", *f.duration_s, {0.0, kMaxCommandDurationS, true});
   }
   if (!(f.speed >= kMinSpeed && f.speed <= kMaxSpeed)) {
     ThrowBadFlag(command, "speed", "in [1, 1000]", FlagText(f.speed));

@@ -6,6 +6,7 @@
 #include <boost/geometry/algorithms/correct.hpp>
 #include <boost/geometry/algorithms/covered_by.hpp>
 #include <boost/geometry/algorithms/difference.hpp>
+#include <boost/geometry/algorithms/intersects.hpp>
 #include <boost/geometry/algorithms/is_valid.hpp>
 #include <boost/geometry/algorithms/union.hpp>
 #include <boost/geometry/strategies/cartesian/centroid_bashein_detmer.hpp>
@@ -103,10 +104,25 @@ MultiPolygon Project(const LabelledFeature& f, const common::LocalFrame& frame) 
         ring.emplace_back(local.east_m, local.north_m);
       }
     }
+    // A ring whose edges cross is reported as such before is_valid(), which may
+    // see a bow tie's net winding first and call it wrongly oriented.
+    for (std::size_t r = 0; r < rings.size(); ++r) {
+      const auto& ring = r == 0 ? polygon.outer() : polygon.inners()[r - 1];
+      if (bg::intersects(ring)) {
+        fail(name + (r == 0 ? "" : " hole " + std::to_string(r)) +
+             " is self-intersecting (edges cross or touch)");
+      }
+    }
     // GeoJSON winds outer rings counter-clockwise, Boost clockwise: correct() flips them.
     bg::correct(polygon);
     bg::validity_failure_type failure = bg::no_failure;
     if (!bg::is_valid(polygon, failure)) fail(name + " " + DescribeFailure(failure));
+    // A flat or sliver polygon (corners nearly on one line) passes is_valid but
+    // leaves nothing to search.
+    if (bg::area(polygon) < kMinSearchAreaM2) {
+      fail(name + " has (near-)zero area: " + std::to_string(bg::area(polygon)) +
+           " m2, less than " + std::to_string(std::lround(kMinSearchAreaM2)) + " m2");
+    }
     const double area_km2 = bg::area(polygon) / common::kSquareMetresPerKm2;
     if (area_km2 > kMaxSearchAreaKm2) {
       fail(name + " covers " + std::to_string(std::lround(area_km2)) +

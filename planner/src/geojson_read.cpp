@@ -132,6 +132,21 @@ GeoFeature ReadFeature(const Json& feature, std::string_view source, std::size_t
   return result;
 }
 
+// "line L, column C" of byte `offset` in `text` (both counted from 1).
+std::string LineAndColumn(std::string_view text, std::size_t offset) {
+  std::size_t line = 1;
+  std::size_t column = 1;
+  for (std::size_t i = 0; i < offset && i < text.size(); ++i) {
+    if (text[i] == '\n') {
+      ++line;
+      column = 1;
+    } else {
+      ++column;
+    }
+  }
+  return "line " + std::to_string(line) + ", column " + std::to_string(column);
+}
+
 Json Parse(std::string_view text, std::string_view source) {
   try {
     return Json::parse(text.begin(), text.end());
@@ -142,6 +157,20 @@ Json Parse(std::string_view text, std::string_view source) {
     if (start != std::string::npos) what = what.substr(start);
     throw std::invalid_argument(std::string(source) + ": malformed JSON: " + what + " (byte " +
                                 std::to_string(e.byte) + ")");
+  } catch (const Json::out_of_range& e) {
+    // A number beyond double's range (1e999): the library names only the token,
+    // "[json.exception.out_of_range.406] number overflow parsing '1e999'".
+    std::string what = e.what();
+    const auto quote = what.find('\'');
+    std::string where;
+    if (quote != std::string::npos && what.size() > quote + 1) {
+      const std::string token = what.substr(quote + 1, what.size() - quote - 2);
+      const std::size_t at = text.find(token);
+      if (at != std::string_view::npos) where = " at " + LineAndColumn(text, at);
+      what = token;
+    }
+    throw std::invalid_argument(std::string(source) + ": number out of range" + where + ": " +
+                                what + " is not a finite number");
   }
 }
 

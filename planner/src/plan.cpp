@@ -38,10 +38,6 @@ void Require(bool ok, const std::string& message) {
   if (!ok) throw std::invalid_argument(message);
 }
 
-bool PositiveFinite(double value) {
-  return value > 0.0 && std::isfinite(value);
-}
-
 // Every sortie's climb over its site to altitude_m and its descent to land, s.
 double VerticalS(const FleetSpec& fleet) {
   return fleet.altitude_m / fleet.climb_mps + fleet.altitude_m / fleet.descent_mps;
@@ -50,6 +46,27 @@ double VerticalS(const FleetSpec& fleet) {
 // What a sortie's endurance leaves at altitude, s.
 double LevelFlightS(const FleetSpec& fleet) {
   return fleet.endurance_s - VerticalS(fleet);
+}
+
+// Refuses a lane spacing so fine for the area that the lanes would not fit in
+// memory or time: estimated before any lane exists.
+void CheckLaneCount(const SearchArea& area, const FleetSpec& fleet) {
+  if (area.area.empty()) return;  // SearchRegion() names that
+  Box box;
+  bg::envelope(area.area, box);
+  const double diagonal_m = std::hypot(box.max_corner().x() - box.min_corner().x(),
+                                       box.max_corner().y() - box.min_corner().y());
+  const double spacing_m = SweepWidthM(fleet);
+  const double lanes = diagonal_m / spacing_m;
+  if (lanes <= kMaxPlanLanes) return;
+  throw std::invalid_argument(
+      "side_overlap " + std::to_string(fleet.side_overlap) + " at altitude_m " +
+      std::to_string(std::lround(fleet.altitude_m)) + " spaces lanes " +
+      std::to_string(spacing_m) + " m apart: the area (" +
+      std::to_string(std::lround(diagonal_m)) + " m across) would need about " +
+      std::to_string(std::llround(lanes)) + " lanes, more than the limit of " +
+      std::to_string(std::lround(kMaxPlanLanes)) +
+      "; lower the overlap, fly higher, or split the area");
 }
 
 void ValidateFleet(const SearchArea& area, const FleetSpec& fleet) {
@@ -82,23 +99,29 @@ void ValidateFleet(const SearchArea& area, const FleetSpec& fleet) {
                                                   ", " + std::to_string(launch.y()) +
                                                   ") is inside a no-fly zone");
   }
-  Require(PositiveFinite(fleet.speed_mps),
-          "speed_mps must be > 0, got " + std::to_string(fleet.speed_mps));
-  Require(PositiveFinite(fleet.endurance_s),
+  const auto in_range = [](const char* field, double value, double min, bool min_open,
+                           double max) {
+    const bool ok = (min_open ? value > min : value >= min) && value <= max;
+    Require(ok, std::string(field) + " must be in " + (min_open ? "(" : "[") +
+                    std::to_string(std::lround(min)) + ", " + std::to_string(std::lround(max)) +
+                    "], got " + std::to_string(value));
+  };
+  in_range("speed_mps", fleet.speed_mps, 0.0, true, kMaxSpeedMps);
+  // Not bounded above here: a long endurance only means fewer sorties (tests and
+  // plan_bench use one flight each); the flags and scenario keys bound it.
+  Require(fleet.endurance_s > 0.0 && std::isfinite(fleet.endurance_s),
           "endurance_s must be > 0, got " + std::to_string(fleet.endurance_s));
-  Require(fleet.swap_s >= 0.0 && std::isfinite(fleet.swap_s),
-          "swap_s must be >= 0, got " + std::to_string(fleet.swap_s));
-  Require(PositiveFinite(fleet.climb_mps),
-          "climb_mps must be > 0, got " + std::to_string(fleet.climb_mps));
-  Require(PositiveFinite(fleet.descent_mps),
-          "descent_mps must be > 0, got " + std::to_string(fleet.descent_mps));
-  Require(fleet.turn_cost_s >= 0.0 && std::isfinite(fleet.turn_cost_s),
-          "turn_cost_s must be >= 0, got " + std::to_string(fleet.turn_cost_s));
+  in_range("swap_s", fleet.swap_s, 0.0, false, kMaxSwapS);
+  in_range("climb_mps", fleet.climb_mps, 0.0, true, kMaxVerticalMps);
+  in_range("descent_mps", fleet.descent_mps, 0.0, true, kMaxVerticalMps);
+  in_range("turn_cost_s", fleet.turn_cost_s, 0.0, false, kMaxTurnCostS);
+  in_range("altitude_m", fleet.altitude_m, 0.0, true, kMaxAltitudeM);
   SweepWidthM(fleet);  // throws naming camera, altitude_m, camera_pitch_deg or side_overlap
   Require(VerticalS(fleet) < fleet.endurance_s,
           "endurance_s " + std::to_string(std::lround(fleet.endurance_s)) +
               " s leaves no time at altitude: the climb to altitude_m and the descent take " +
               std::to_string(std::lround(VerticalS(fleet))) + " s");
+  CheckLaneCount(area, fleet);
 }
 
 MultiPolygon SearchRegion(const SearchArea& area) {

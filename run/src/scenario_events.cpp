@@ -90,7 +90,7 @@ void ReadFaultParameters(const Mapping& fault, FaultSpec& out) {
   };
   if (out.kind == FaultKind::kBias) {
     out.bias =
-        ReadVector<3>(required(bias, "bias"), Range{-internal::kUnbounded, internal::kUnbounded});
+        ReadVector<3>(required(bias, "bias"), Range{-internal::kMaxBias, internal::kMaxBias});
   }
   if (out.kind == FaultKind::kExtraNoise) {
     out.noise_factor =
@@ -120,7 +120,7 @@ FaultSpec ReadFault(const Field& field, const Scenario& scenario) {
     if (out.kind == FaultKind::kTotalLoss) {
       duration->Fail("total_loss is permanent: it takes no duration_s");
     }
-    out.duration_s = duration->Number(Range{0.0, internal::kUnbounded, true});
+    out.duration_s = duration->Number(Range{0.0, internal::kMaxDurationS, true});
   }
   ReadFaultParameters(fault, out);
   return out;

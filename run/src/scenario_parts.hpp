@@ -13,11 +13,12 @@ namespace fireswarm::run::internal {
 
 /// Sanity limits: beyond them a value is more likely a unit mistake than a plan.
 inline constexpr double kMaxDurationS = 86'400.0;  // one day of simulated time
-inline constexpr double kMaxAltitudeM = 1'000.0;
-inline constexpr double kMaxSpeedMps = 100.0;
-inline constexpr double kMaxEnduranceS = 86'400.0;
-/// A battery swap longer than an hour is more likely minutes typed as seconds.
-inline constexpr double kMaxSwapS = 3'600.0;
+/// The fleet's ranges are the planner's (planner/plan.hpp, docs/limits.md). A
+/// battery swap longer than an hour is more likely minutes typed as seconds.
+inline constexpr double kMaxAltitudeM = planner::kMaxAltitudeM;
+inline constexpr double kMaxSpeedMps = planner::kMaxSpeedMps;
+inline constexpr double kMaxEnduranceS = planner::kMaxEnduranceS;
+inline constexpr double kMaxSwapS = planner::kMaxSwapS;
 /// Stands closer than this would nearly put two parked vehicles' rotor discs
 /// (sim2d: 0.25 m radius) into each other.
 inline constexpr double kMinStandSpacingM = 1.0;
@@ -34,6 +35,9 @@ inline constexpr double kMaxWindMps = 50.0;
 inline constexpr double kFullCircleDeg = 360.0;
 inline constexpr double kMaxNoiseFactor = 1'000.0;
 inline constexpr double kMaxBallastOffsetM = 1.0;
+/// A sensor bias beyond this (m, rad or V, per sensor) is no longer a bias: a
+/// GPS offset past the area's sane extent (planner::kMaxDistanceFromOriginM).
+inline constexpr double kMaxBias = 200'000.0;
 inline constexpr int kMaxFalseTracks = 1'000'000;
 inline constexpr int kMaxReportsLost = 1'000'000;
 inline constexpr int kMaxCollisions = 1'000'000;

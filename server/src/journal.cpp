@@ -5,6 +5,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <boost/crc.hpp>
 #include <cerrno>
 #include <cmath>
@@ -14,6 +15,8 @@
 #include <stdexcept>
 #include <utility>
 #include <vector>
+
+#include "fireswarm/common/atomic_file.hpp"
 
 namespace fireswarm::server {
 namespace {
@@ -135,9 +138,10 @@ std::string ReadAll(const std::filesystem::path& path, int fd) {
 struct Replay {
   std::vector<JournalRecord> records;
   std::size_t valid_end = 0;
+  std::string corruption;  // set when a bad line before the last ended the replay (recovering)
 };
 
-Replay Parse(const std::filesystem::path& path, const std::string& bytes) {
+Replay Parse(const std::filesystem::path& path, const std::string& bytes, bool keep_valid_prefix) {
   Replay replay;
   std::size_t begin = 0;
   for (std::uint64_t line_number = 1; begin < bytes.size(); ++line_number) {
@@ -149,11 +153,18 @@ Replay Parse(const std::filesystem::path& path, const std::string& bytes) {
     std::optional<JournalRecord> record =
         DecodeLine(std::string_view(bytes).substr(begin, newline - begin), why);
     if (!record && last) break;  // torn or damaged in its last write: drop it
+    bool corrupt = false;
     const auto fail = [&](const std::string& reason) {
-      throw std::runtime_error(path.string() + ": line " + std::to_string(line_number) + ": " +
-                               reason + " (journal corrupt before its last line)");
+      if (keep_valid_prefix) {
+        replay.corruption = "line " + std::to_string(line_number) + ": " + reason;
+        corrupt = true;
+        return;
+      }
+      throw JournalCorruptError(path.string() + ": line " + std::to_string(line_number) + ": " +
+                                reason + " (journal corrupt before its last line)");
     };
     if (!record) fail(why);
+    if (corrupt) break;
     // A checksummed line of a newer format was not torn either: refused wherever it is.
     if (record->version > kJournalVersion) {
       throw std::runtime_error(path.string() + ": line " + std::to_string(line_number) +
@@ -167,12 +178,26 @@ Replay Parse(const std::filesystem::path& path, const std::string& bytes) {
     if (record->seq != expected) {
       fail("seq " + std::to_string(record->seq) + " where " + std::to_string(expected) +
            " was expected");
+      break;
     }
     replay.records.push_back(std::move(*record));
     begin = newline + 1;
     replay.valid_end = begin;
   }
   return replay;
+}
+
+// Where the lines after a corrupt one go: `<journal>.corrupt`, or the first of
+// `.corrupt.2`, `.corrupt.3`, ... not taken (an earlier recovery's stays).
+std::filesystem::path AsideName(const std::filesystem::path& journal) {
+  std::filesystem::path aside = journal;
+  aside += ".corrupt";
+  std::error_code ignored;
+  for (int n = 2; std::filesystem::exists(std::filesystem::symlink_status(aside, ignored)); ++n) {
+    aside = journal;
+    aside += ".corrupt." + std::to_string(n);
+  }
+  return aside;
 }
 
 // Makes a newly created file's name survive a power cut.
@@ -200,7 +225,7 @@ Journal::Journal(Journal&& other) noexcept
       next_seq_(other.next_seq_),
       end_offset_(other.end_offset_),
       broken_(other.broken_),
-      recovery_(other.recovery_) {}
+      recovery_(std::move(other.recovery_)) {}
 
 Journal& Journal::operator=(Journal&& other) noexcept {
   if (this != &other) {
@@ -211,7 +236,7 @@ Journal& Journal::operator=(Journal&& other) noexcept {
     next_seq_ = other.next_seq_;
     end_offset_ = other.end_offset_;
     broken_ = other.broken_;
-    recovery_ = other.recovery_;
+    recovery_ = std::move(other.recovery_);
   }
   return *this;
 }
@@ -226,7 +251,8 @@ void Journal::Close() noexcept {
   fd_ = -1;
 }
 
-Journal Journal::Open(const std::filesystem::path& path, const Visitor& visit, JournalSync sync) {
+Journal Journal::Open(const std::filesystem::path& path, const Visitor& visit, JournalSync sync,
+                      JournalCorruption corruption) {
   std::error_code ignored;
   const bool created = !std::filesystem::exists(path, ignored);
   // O_APPEND: every write lands at the end, even after a truncation.
@@ -242,12 +268,23 @@ Journal Journal::Open(const std::filesystem::path& path, const Visitor& visit, J
   if (created) SyncDirectoryOf(path);
 
   const std::string bytes = ReadAll(path, fd);
-  Replay replay = Parse(path, bytes);
+  Replay replay = Parse(path, bytes, corruption == JournalCorruption::kKeepValidPrefix);
+  if (!replay.corruption.empty()) {
+    // The lines from the corrupt one on are kept, beside the journal, before
+    // they are cut off it: an operator may still want to read them.
+    const std::string_view rest = std::string_view(bytes).substr(replay.valid_end);
+    journal.recovery_.moved_aside = AsideName(path);
+    common::WriteFileAtomically(journal.recovery_.moved_aside, rest);
+    journal.recovery_.corruption = replay.corruption;
+    journal.recovery_.dropped_lines =
+        static_cast<std::uint64_t>(std::count(rest.begin(), rest.end(), '\n')) +
+        (rest.empty() || rest.back() == '\n' ? 0U : 1U);
+  }
   if (replay.valid_end < bytes.size()) {
     if (::ftruncate(fd, static_cast<off_t>(replay.valid_end)) != 0 || ::fdatasync(fd) != 0) {
       throw std::runtime_error(SystemError(path, "cannot cut off the torn last line", errno));
     }
-    journal.recovery_.dropped_lines = 1;
+    if (replay.corruption.empty()) journal.recovery_.dropped_lines = 1;
     journal.recovery_.dropped_bytes = bytes.size() - replay.valid_end;
   }
   journal.recovery_.records = replay.records.size();

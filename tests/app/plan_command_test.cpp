@@ -2,10 +2,12 @@
 // its JSON, and exit code 2 with nothing written on bad input.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <string>
@@ -233,6 +235,100 @@ TEST_F(PlanCommand, BadLaunchFileExitsTwoNamingFileAndFeature) {
       RunFireswarm(Base() + " --drones 2 --launch-file " + PathOf("sites.geojson"));
   EXPECT_EQ(polygon.exit_code, 2);
   EXPECT_THAT(JoinLines(polygon), HasSubstr("expected a Point"));
+}
+
+// Issue 19: --overlap 0.99 grew past 4 GB and never ended; it is refused up
+// front from the estimated lane count, naming the flag. --altitude-m has a range.
+TEST_F(PlanCommand, RefusesWorkBeyondTheDocumentedLimitsNamingTheFlag) {
+  // About 11.5 km x 11 km, as scenarios/areas/convex.geojson (6.9 km x 5.1 km).
+  std::ofstream(PathOf("wide.geojson")) << R"({"type":"Polygon","coordinates":[[[-74.7,46.15],
+    [-74.55,46.15],[-74.55,46.25],[-74.7,46.25],[-74.7,46.15]]]})";
+  for (const char* overlap : {"0.99", "0.999"}) {
+    const RunResult run = RunFireswarm("plan --area " + PathOf("wide.geojson") + " --out " +
+                                       PathOf("plan.geojson") + " --drones 4 --overlap " + overlap);
+    EXPECT_EQ(run.exit_code, 2) << JoinLines(run);
+    EXPECT_THAT(JoinLines(run), HasSubstr("--overlap " + std::string(overlap)));
+    EXPECT_THAT(JoinLines(run), HasSubstr("lanes, more than the limit of "));
+    EXPECT_FALSE(fs::exists(PathOf("plan.geojson"))) << overlap;
+  }
+  const std::vector<std::pair<std::string, std::string>> cases{
+      {" --altitude-m 100000", "--altitude-m must be in (0, 1000], got '100000'"},
+      {" --speed-mps 1e9", "--speed-mps must be in (0, 100]"},
+      {" --endurance-s 1e12", "--endurance-s must be in (0, 86400]"},
+      {" --swap-s 1e7", "--swap-s must be in [0, 3600]"},
+      {" --climb-mps 1000", "--climb-mps must be in (0, 50]"},
+      {" --turn-cost-s 1e6", "--turn-cost-s must be in [0, 600]"},
+  };
+  for (const auto& [flags, message] : cases) {
+    const RunResult run = RunFireswarm(Base() + " --drones 2" + flags);
+    EXPECT_EQ(run.exit_code, 2) << flags;
+    EXPECT_THAT(JoinLines(run), HasSubstr(message)) << flags;
+    EXPECT_FALSE(fs::exists(PathOf("plan.geojson"))) << flags;
+  }
+}
+
+// Issue 19: --out replaced a fifo, a symlink or a device with a regular file,
+// and could overwrite its own input.
+TEST_F(PlanCommand, RefusesAnOutputThatIsNotARegularFileOrIsAnInput) {
+  ASSERT_EQ(::mkfifo(PathOf("fifo").c_str(), 0600), 0);
+  std::ofstream(PathOf("keep.txt")) << "keep";
+  fs::create_symlink(PathOf("keep.txt"), PathOf("link.geojson"));
+  const std::string plan = "plan --drones 2 --area " + PathOf("area.geojson") + " --no-fly " +
+                           PathOf("nofly.geojson") + " --out ";
+  const std::vector<std::pair<std::string, std::string>> cases{
+      {PathOf("fifo"), "is a fifo"},
+      {PathOf("link.geojson"), "is a symbolic link"},
+      {"/dev/full", "/dev/full: "},
+      {PathOf("area.geojson"), "is the input"},
+      {PathOf("sub/../nofly.geojson"), "is the input"},
+      {PathOf("none/plan.geojson"), "does not exist"},
+  };
+  fs::create_directories(PathOf("sub"));
+  for (const auto& [out, problem] : cases) {
+    const RunResult run = RunFireswarm(plan + out);
+    EXPECT_EQ(run.exit_code, 2) << out;
+    EXPECT_THAT(JoinLines(run), HasSubstr("--out " + out + ": ")) << out;
+    EXPECT_THAT(JoinLines(run), HasSubstr(problem)) << out;
+  }
+  struct stat info {};
+  ASSERT_EQ(::lstat(PathOf("fifo").c_str(), &info), 0);
+  EXPECT_TRUE(S_ISFIFO(info.st_mode));
+  EXPECT_TRUE(fs::is_symlink(PathOf("link.geojson")));
+  ASSERT_EQ(::stat("/dev/full", &info), 0);
+  EXPECT_TRUE(S_ISCHR(info.st_mode));
+  std::ifstream area(PathOf("area.geojson"));
+  EXPECT_EQ(std::string(std::istreambuf_iterator<char>(area), {}), kArea);
+}
+
+// Issue 19: a flat polygon was planned, 1e999 gave a library message without
+// the file, and an uneven bow tie was called "wrong orientation".
+TEST_F(PlanCommand, RefusesFlatCrossedAndOutOfRangeAreasNamingFileAndFeature) {
+  const std::vector<std::pair<std::string, std::string>> cases{
+      // A block and a flat strip north of it: the union hid the strip, which was planned.
+      {R"({"type":"FeatureCollection","features":[{"type":"Feature","properties":{"name":
+        "block"},"geometry":{"type":"Polygon","coordinates":[[[-74.61,46.195],[-74.59,46.195],
+        [-74.59,46.205],[-74.61,46.205],[-74.61,46.195]]]}},{"type":"Feature","properties":{
+        "name":"flat"},"geometry":{"type":"Polygon","coordinates":[[[-74.61,46.21],[-74.60,46.21],
+        [-74.59,46.210000001],[-74.61,46.21]]]}}]})",
+       "flat.geojson: feature 1 (\"flat\"): polygon has (near-)zero area"},
+      // A bow tie as a hole: named as the hole, not the polygon.
+      {R"({"type":"Feature","properties":{"name":"crossed hole"},"geometry":{"type":"Polygon",
+        "coordinates":[[[-74.62,46.19],[-74.58,46.19],[-74.58,46.21],[-74.62,46.21],[-74.62,46.19]],
+        [[-74.61,46.195],[-74.59,46.209],[-74.59,46.195],[-74.605,46.2],[-74.61,46.195]]]}})",
+       "feature 0 (\"crossed hole\"): polygon hole 1 is self-intersecting"},
+      {R"({"type":"Polygon","coordinates":[[[-74.61,46.195],[-74.59,1e999],
+        [-74.59,46.205],[-74.61,46.195]]]})",
+       "big.geojson: number out of range at line 1, column "},
+  };
+  const char* names[] = {"flat.geojson", "crossed.geojson", "big.geojson"};
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    std::ofstream(PathOf(names[i])) << cases[i].first;
+    const RunResult run = RunFireswarm("plan --area " + PathOf(names[i]) + " --drones 2 --out " +
+                                       PathOf("plan.geojson"));
+    EXPECT_EQ(run.exit_code, 2) << names[i];
+    EXPECT_THAT(JoinLines(run), HasSubstr(cases[i].second)) << names[i];
+    EXPECT_FALSE(fs::exists(PathOf("plan.geojson"))) << names[i];
+  }
 }
 
 TEST_F(PlanCommand, HelpListsTheOptions) {

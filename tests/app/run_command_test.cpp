@@ -2,6 +2,7 @@
 // expectation holds), 1 (one fails) and 2 (bad input), and the files it writes,
 // the LCM log among them.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <algorithm>
 #include <cmath>
@@ -272,6 +273,40 @@ TEST_F(RunCommandTest, ExitsTwoOnALogInAMissingDirectoryNamingThePath) {
   EXPECT_EQ(result.exit_code, 2) << Output(result);
   EXPECT_TRUE(Mentions(result, "is a directory")) << Output(result);
   EXPECT_EQ(Files(), std::set<std::string>{"ok.yaml"}) << "nothing written";
+}
+
+// Issue 19: --report could name the scenario itself and overwrite it.
+TEST_F(RunCommandTest, RefusesAReportThatIsTheScenario) {
+  const std::string text = TinyScenario(30.0, "  no_collisions: true\n");
+  const std::string scenario = Write("ok.yaml", text);
+  std::filesystem::create_directories(PathOf("sub"));
+  const RunResult result =
+      RunFireswarm("run " + scenario + " --report " + PathOf("sub/../ok.yaml"));
+  EXPECT_EQ(result.exit_code, 2) << Output(result);
+  EXPECT_TRUE(Mentions(result, "--report " + PathOf("sub/../ok.yaml") + ": is the input " +
+                                   scenario))
+      << Output(result);
+  EXPECT_EQ(FileText(scenario), text);
+}
+
+// Issue 19: a bad --svg was found only after the whole mission had run, with the
+// report already written. Now every output is checked first and nothing runs.
+TEST_F(RunCommandTest, ABadOutputIsFoundBeforeTheRunAndNothingIsWritten) {
+  const std::string scenario = Write("ok.yaml", TinyScenario(30.0, "  no_collisions: true\n"));
+  ASSERT_EQ(::mkfifo(PathOf("map.fifo").c_str(), 0600), 0);
+  const std::vector<std::pair<std::string, std::string>> cases{
+      {" --svg " + PathOf("map.fifo"), "--svg " + PathOf("map.fifo") + ": is a fifo"},
+      {" --svg " + PathOf("none/map.svg"), "--svg " + PathOf("none/map.svg") + ": the directory"},
+      {" --junit " + PathOf("r.json"), "--junit " + PathOf("r.json") + ": is also --report"},
+  };
+  for (const auto& [flags, message] : cases) {
+    const RunResult result = RunFireswarm("run " + scenario + " --report " + PathOf("r.json") +
+                                          " --log " + PathOf("r.lcmlog") + flags);
+    EXPECT_EQ(result.exit_code, 2) << Output(result);
+    EXPECT_TRUE(Mentions(result, message)) << Output(result);
+    EXPECT_FALSE(Mentions(result, "simulated s")) << "the run went: " << Output(result);
+    EXPECT_EQ(Files(), (std::set<std::string>{"map.fifo", "ok.yaml"})) << flags;
+  }
 }
 
 }  // namespace

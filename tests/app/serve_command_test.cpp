@@ -24,6 +24,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <iterator>
 #include <lcm/lcm-cpp.hpp>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -337,6 +338,71 @@ TEST_F(ServeCommand, ServerKilledMidMissionResumesFromItsJournal) {
   EXPECT_EQ(sim.Finish(Clock::now() + kExitDeadline).exit_code, 0);
 }
 
+bool Mentions(const RunResult& run, const std::string& text) {
+  return std::any_of(run.lines.begin(), run.lines.end(),
+                     [&](const std::string& line) { return line.find(text) != std::string::npos; });
+}
+
+// Issue 19: a journal corrupt in its middle made serve refuse to start, with no
+// way to keep the valid part while drones fly. The refusal names --recover;
+// --recover resumes from the valid records and moves the rest aside, named.
+TEST_F(ServeCommand, RecoverKeepsTheValidPrefixOfACorruptJournal) {
+  const std::string journal = PathOf("mission.journal");
+  // A real journal: the server starts a mission with nobody on the link.
+  PtyCable cable;
+  std::vector<std::string> args = ServeArgs(cable.server_end());
+  args.erase(std::find(args.begin(), args.end(), "--until-complete"));
+  *(std::find(args.begin(), args.end(), "--duration-s") + 1) = "0.2";
+  args.insert(args.end(), {"--journal", journal});
+  std::string command;
+  for (const std::string& arg : args) command += " '" + arg + "'";
+  RunResult run = RunFireswarm(command);
+  ASSERT_EQ(run.exit_code, 0) << (run.lines.empty() ? "" : run.lines.back());
+  std::vector<std::string> lines;
+  {
+    std::ifstream in(journal);
+    for (std::string line; std::getline(in, line);) lines.push_back(line);
+  }
+  ASSERT_GE(lines.size(), 3U);
+  // The last line but one is damaged: not a torn append, corruption.
+  const std::size_t bad = lines.size() - 2;
+  lines[bad][lines[bad].size() / 2] ^= 0x01;
+  {
+    std::ofstream out(journal, std::ios::trunc);
+    for (const std::string& line : lines) out << line << "\n";
+  }
+  const auto text_of = [](const std::string& path) {
+    std::ifstream in(path);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  const std::string corrupt = text_of(journal);
+
+  run = RunFireswarm(command);
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_TRUE(Mentions(run, journal + ": line " + std::to_string(bad + 1) + ": ")) << command;
+  EXPECT_TRUE(Mentions(run, "start again with --recover"));
+  EXPECT_EQ(text_of(journal), corrupt) << "the refused journal is left as it was";
+
+  run = RunFireswarm(command + " --recover");
+  ASSERT_EQ(run.exit_code, 0) << (run.lines.empty() ? "" : run.lines.back());
+  const std::string aside = journal + ".corrupt";
+  EXPECT_TRUE(Mentions(run, "moved 2 lines")) << "the bad line and the one after it";
+  EXPECT_TRUE(Mentions(run, aside));
+  bool resumed = false;
+  for (const std::string& line : run.lines) {
+    const Json j = Json::parse(line, nullptr, false);
+    if (j.is_discarded() || j.value("event", "") != "resumed") continue;
+    resumed = true;
+    EXPECT_EQ(j.at("records"), bad) << line;
+    EXPECT_EQ(j.at("moved_aside"), aside) << line;
+  }
+  EXPECT_TRUE(resumed) << "no 'resumed' line";
+  EXPECT_EQ(text_of(aside), lines[bad] + "\n" + lines[bad + 1] + "\n");
+  // The resumed server appended after the valid prefix: the journal reads again.
+  run = RunFireswarm(command);
+  EXPECT_EQ(run.exit_code, 0) << (run.lines.empty() ? "" : run.lines.back());
+}
+
 // Makes `key` the key of operator "ann" in the key store `dir` (the fixture's,
 // which serve already takes with --keys for the vehicles).
 void AddAnn(const std::string& dir, const common::SecretKey& key) {
@@ -540,11 +606,6 @@ TEST_F(ServeCommand, TheCommandCenterShowsTheLinkAndStartsTheMission) {
   EXPECT_EQ(sim.Finish(Clock::now() + kExitDeadline).exit_code, 0);
 }
 
-bool Mentions(const RunResult& run, const std::string& text) {
-  return std::any_of(run.lines.begin(), run.lines.end(),
-                     [&](const std::string& line) { return line.find(text) != std::string::npos; });
-}
-
 // Real operations launch from several road-side points and fly sorties: serve
 // plans with the sites given (--launch repeated, or a file fixing the drones per
 // site) and the endurance, and says so in its "planned" line.
@@ -624,6 +685,12 @@ TEST_F(ServeCommand, BadFlagsExitTwoNamingTheFlag) {
            {serve + " --camera flir" + link, {"--camera"}},
            {serve + " --telemetry-hz 0" + link, {"--telemetry-hz"}},
            {serve + " --duration-s 0" + link, {"--duration-s"}},
+           {serve + " --duration-s 1e12" + link, {"--duration-s must be in (0, 2.592e+06]"}},
+           {serve + " --altitude-m 100000" + link, {"--altitude-m must be in (0, 1000]"}},
+           {serve + " --speed-mps 1e9" + link, {"--speed-mps must be in (0, 100]"}},
+           {serve + " --recover --checksum crc16" + link, {"--recover goes with --journal"}},
+           {serve + " --checksum crc16 --log " + area_ + link, {"--log", "is the input"}},
+           {serve + " --checksum crc16 --journal " + keys_ + link, {"--journal", "a directory"}},
            {"serve --area " + PathOf("missing.geojson") + " --drones 2 --start --checksum crc16" +
                 link,
             {"missing.geojson"}},

@@ -164,6 +164,45 @@ TEST(LoadSearchAreaErrors, SelfIntersection) {
             "or touch)");
 }
 
+// Issue 19: an uneven bow tie (one lobe larger) was called "wrong orientation";
+// a hole that crosses itself is named as the hole.
+TEST(LoadSearchAreaErrors, UnevenBowTieAndCrossedHoleAreSelfIntersecting) {
+  const auto at = [](double east_deg, double north_deg) {
+    return "[" + std::to_string(kLon + east_deg) + "," + std::to_string(kLat + north_deg) + "]";
+  };
+  const std::string uneven = "[" + at(0, 0) + "," + at(0.02, 0.02) + "," + at(0.02, 0) + "," +
+                             at(0.01, 0.015) + "," + at(0, 0) + "]";
+  EXPECT_EQ(ErrorOf(Collection(Feature("uneven", PolygonOf(uneven)))),
+            "area.geojson: feature 0 (\"uneven\"): polygon is self-intersecting (edges cross or "
+            "touch)");
+  const std::string crossed_hole = "[" + at(-0.005, -0.005) + "," + at(0.005, 0.005) + "," +
+                                   at(0.005, -0.005) + "," + at(-0.005, 0.005) + "," +
+                                   at(-0.005, -0.005) + "]";
+  EXPECT_EQ(ErrorOf(PolygonOf(kSquare + "," + crossed_hole)),
+            "area.geojson: geometry: polygon hole 1 is self-intersecting (edges cross or touch)");
+}
+
+// Issue 19: a flat polygon (corners on one line, to a nanodegree) beside a real
+// one was planned: the union hid it.
+TEST(LoadSearchAreaErrors, FlatPolygonHasNearZeroArea) {
+  std::ostringstream flat;
+  const double north = kLat + 0.02;
+  flat << std::setprecision(12) << "[[" << kLon << "," << north << "],[" << kLon + 0.01 << ","
+       << north << "],[" << kLon + 0.02 << "," << north + 1e-9 << "],[" << kLon << "," << north
+       << "]]";
+  const std::string error = ErrorOf(Collection(Feature("block", PolygonOf(kSquare)) + "," +
+                                               Feature("strip", PolygonOf(flat.str()))));
+  EXPECT_THAT(error, HasSubstr("area.geojson: feature 1 (\"strip\"): polygon has (near-)zero "
+                               "area"));
+}
+
+// Issue 19: 1e999 overflows a double; the library's message named no file.
+TEST(LoadSearchAreaErrors, ANumberBeyondDoubleNamesFileLineAndColumn) {
+  const std::string text = "{\"type\":\"Polygon\",\n\"coordinates\":[[[1e999,0],[1,0],[1,1],[1e999,0]]]}";
+  EXPECT_EQ(ErrorOf(text),
+            "area.geojson: number out of range at line 2, column 18: 1e999 is not a finite number");
+}
+
 TEST(LoadSearchAreaErrors, UnclosedRing) {
   std::string open = kSquare;
   open = open.substr(0, open.rfind(",[")) + "]";  // drop the closing position

@@ -204,6 +204,29 @@ TEST(PlanSearch, RejectsABadFleetNamingTheField) {
   fleet = good;
   fleet.endurance_s = 0;
   ExpectRejected(fleet, "endurance_s");
+  fleet = good;
+  fleet.altitude_m = 100'000;
+  ExpectRejected(fleet, "altitude_m");
+  fleet = good;
+  fleet.speed_mps = 1e9;
+  ExpectRejected(fleet, "speed_mps");
+  fleet = good;
+  fleet.turn_cost_s = 1e6;
+  ExpectRejected(fleet, "turn_cost_s");
+}
+
+// Issue 19: side_overlap 0.99 grew past 4 GB. The lanes are estimated from the
+// area's extent before any is generated and refused beyond kMaxPlanLanes.
+TEST(PlanSearch, RefusesMoreLanesThanTheLimitBeforeGeneratingThem) {
+  FleetSpec fleet = Fleet(4, {1'000, 1'000});
+  fleet.side_overlap = 0.999;
+  try {
+    PlanSearch(Area({Rect(0, 0, 2'000, 2'000)}), fleet);
+    FAIL() << "expected a refusal";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("side_overlap", 0), 0U) << e.what();
+    EXPECT_THAT(e.what(), HasSubstr("lanes, more than the limit of "));
+  }
 }
 
 }  // namespace

@@ -560,6 +560,15 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"FaultBiasWrongLength",
                  Minimal("faults: [{vehicle: 1, at_s: 5, kind: bias, bias: [1, 2]}]\n"),
                  "faults[0].bias", "must be a list of 3 numbers, got 2"},
+        // Issue 19: every numeric key has a range.
+        BadInput{"FaultBiasBeyondRange",
+                 Minimal("faults: [{vehicle: 1, at_s: 5, kind: bias, sensor: gps, "
+                         "bias: [1, 1e300, 0]}]\n"),
+                 "faults[0].bias[1]", "must be in [-200000, 200000], got 1e300"},
+        BadInput{"FaultDurationBeyondADay",
+                 Minimal("faults: [{vehicle: 1, at_s: 5, kind: frozen, sensor: gps, "
+                         "duration_s: 1e9}]\n"),
+                 "faults[0].duration_s", "must be in (0, 86400], got 1e9"},
         BadInput{"FaultParameterOfAnotherKind",
                  Minimal("faults: [{vehicle: 1, at_s: 5, kind: bias, bias: [1, 2, 3], "
                          "noise_factor: 3}]\n"),

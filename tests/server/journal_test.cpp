@@ -277,6 +277,43 @@ TEST(Journal, RefusesAMissingRecordNamingTheLine) {
   EXPECT_THAT(error, HasSubstr("seq 3 where 2 was expected"));
 }
 
+// Issue 19: a corrupt middle line must not strand a mission: kKeepValidPrefix
+// replays the records before it, moves the rest aside (named) and appends on.
+TEST(Journal, RecoveringKeepsTheValidPrefixAndMovesTheRestAside) {
+  const ScopedDir dir;
+  const fs::path path = dir.path / "mission.jsonl";
+  {
+    Journal journal = Journal::Open(path, [](const JournalRecord&) {});
+    AppendRecords(journal, 5);
+  }
+  std::string bytes = ReadFile(path);
+  std::size_t line_3 = 0;
+  for (int line = 1; line < 3; ++line) line_3 = bytes.find('\n', line_3) + 1;
+  bytes[line_3 + 20] = static_cast<char>(bytes[line_3 + 20] ^ 0x01);
+  WriteFile(path, bytes);
+  EXPECT_THROW(OpenAndRead(path), JournalCorruptError);
+  WriteFile(dir.path / "mission.jsonl.corrupt", "an earlier recovery's\n");
+
+  std::vector<JournalRecord> records;
+  {
+    Journal journal =
+        Journal::Open(path, [&](const JournalRecord& r) { records.push_back(r); },
+                      JournalSync::kEveryAppend, JournalCorruption::kKeepValidPrefix);
+    ExpectRecords(records, 2);
+    const JournalRecovery& recovery = journal.recovery();
+    EXPECT_EQ(recovery.records, 2U);
+    EXPECT_EQ(recovery.dropped_lines, 3U);
+    EXPECT_EQ(recovery.dropped_bytes, bytes.size() - line_3);
+    EXPECT_EQ(recovery.moved_aside, dir.path / "mission.jsonl.corrupt.2");
+    EXPECT_THAT(recovery.corruption, HasSubstr("line 3"));
+    EXPECT_EQ(ReadFile(recovery.moved_aside), bytes.substr(line_3));
+    EXPECT_EQ(journal.next_seq(), 3U);
+    AppendRecords(journal, 3);
+  }
+  ExpectRecords(OpenAndRead(path), 5);
+  EXPECT_EQ(ReadFile(dir.path / "mission.jsonl.corrupt"), "an earlier recovery's\n");
+}
+
 TEST(Journal, RefusesASecondWriterOnTheSameFile) {
   const ScopedDir dir;
   const fs::path path = dir.path / "mission.jsonl";

@@ -40,8 +40,14 @@ void BenchScenarioSpec::Validate() const {
   if (!(area_km2 > 0.0 && area_km2 <= kMaxAreaKm2)) {
     Bad("area_km2", "must be in (0, 100], got " + std::to_string(area_km2));
   }
-  if (fires < 0) Bad("fires", "must be >= 0, got " + std::to_string(fires));
-  if (distractors < 0) Bad("distractors", "must be >= 0, got " + std::to_string(distractors));
+  // At most as many as a scenario's random fires (docs/limits.md).
+  constexpr int kMaxIgnitions = 1'000;
+  if (fires < 0 || fires > kMaxIgnitions) {
+    Bad("fires", "must be in [0, 1000], got " + std::to_string(fires));
+  }
+  if (distractors < 0 || distractors > kMaxIgnitions) {
+    Bad("distractors", "must be in [0, 1000], got " + std::to_string(distractors));
+  }
   if (!(altitude_m > 0.0 && altitude_m <= 500.0)) {
     Bad("altitude_m", "must be in (0, 500], got " + std::to_string(altitude_m));
   }

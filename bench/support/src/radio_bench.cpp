@@ -35,6 +35,10 @@ constexpr double kSecondsPerMinute = 60.0;
 // Report arrivals draw from their own generator, decorrelated from the channel's.
 constexpr std::uint64_t kReportSeedSalt = 0x9E37'79B9'7F4A'7C15ULL;
 constexpr int kMaxVehicles = 254;
+constexpr double kMaxBenchSeconds = 86'400.0;  // one simulated day
+constexpr int kMaxBenchBaud = 10'000'000;
+constexpr double kMaxReportsPerMinute = 600.0;
+constexpr double kMaxTelemetryHz = 50.0;
 
 template <typename Value>
 [[noreturn]] void ThrowConfig(const std::string& field, const std::string& requirement,
@@ -216,21 +220,24 @@ class Bench {
 
 void RadioBenchConfig::Validate() const {
   if (vehicles < 1 || vehicles > kMaxVehicles) ThrowConfig("vehicles", "in 1..254", vehicles);
-  if (!(std::isfinite(seconds) && seconds > 0.0)) ThrowConfig("seconds", "> 0", seconds);
-  if (!(std::isfinite(drain_seconds) && drain_seconds >= 0.0)) {
-    ThrowConfig("drain_seconds", ">= 0", drain_seconds);
+  // Upper limits bound the simulated work (docs/limits.md).
+  if (!(seconds > 0.0 && seconds <= kMaxBenchSeconds)) {
+    ThrowConfig("seconds", "in (0, 86400]", seconds);
   }
-  if (baud <= 0) ThrowConfig("baud", "> 0", baud);
+  if (!(drain_seconds >= 0.0 && drain_seconds <= kMaxBenchSeconds)) {
+    ThrowConfig("drain_seconds", "in [0, 86400]", drain_seconds);
+  }
+  if (baud <= 0 || baud > kMaxBenchBaud) ThrowConfig("baud", "in 1..10000000", baud);
   if (turnaround < Nanos::zero()) ThrowConfig("turnaround", ">= 0 ns", turnaround.count());
   if (!(loss >= 0.0 && loss < 1.0)) ThrowConfig("loss", "in [0, 1)", loss);
   if (!(bit_error_rate >= 0.0 && bit_error_rate < 1.0)) {
     ThrowConfig("bit_error_rate", "in [0, 1)", bit_error_rate);
   }
-  if (!(std::isfinite(reports_per_minute) && reports_per_minute >= 0.0)) {
-    ThrowConfig("reports_per_minute", ">= 0", reports_per_minute);
+  if (!(reports_per_minute >= 0.0 && reports_per_minute <= kMaxReportsPerMinute)) {
+    ThrowConfig("reports_per_minute", "in [0, 600]", reports_per_minute);
   }
-  if (!(std::isfinite(telemetry_hz) && telemetry_hz > 0.0)) {
-    ThrowConfig("telemetry_hz", "> 0", telemetry_hz);
+  if (!(telemetry_hz > 0.0 && telemetry_hz <= kMaxTelemetryHz)) {
+    ThrowConfig("telemetry_hz", "in (0, 50]", telemetry_hz);
   }
   if (mission_waypoints < 0 || std::cmp_greater(mission_waypoints, radio::kMaxMissionWaypoints)) {
     ThrowConfig("mission_waypoints", "in 0.." + std::to_string(radio::kMaxMissionWaypoints),

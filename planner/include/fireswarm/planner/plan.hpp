@@ -20,6 +20,25 @@ struct SearchArea {
   MultiPolygon no_fly;
 };
 
+/// The documented ranges of FleetSpec's numbers (docs/limits.md): PlanSearch
+/// refuses values outside them, and the scenario keys and command-line flags that
+/// set them check the same ranges up front.
+inline constexpr double kMaxAltitudeM = 1'000.0;     ///< altitude_m in (0, 1000]
+inline constexpr double kMaxSpeedMps = 100.0;        ///< speed_mps in (0, 100]
+inline constexpr double kMaxEnduranceS = 86'400.0;   ///< endurance_s in (0, one day]
+inline constexpr double kMaxSwapS = 3'600.0;         ///< swap_s in [0, 3600]
+inline constexpr double kMaxVerticalMps = 50.0;      ///< climb_mps, descent_mps in (0, 50]
+inline constexpr double kMaxTurnCostS = 600.0;       ///< turn_cost_s in [0, 600]
+/// At most this many lanes across the area in any sweep direction, estimated as
+/// the diagonal of the area's bounding box over the lane spacing before any lane
+/// is generated: a tiny spacing (side_overlap near 1) would otherwise take
+/// unbounded memory and time (planning grows faster than the square of the lanes:
+/// scenarios/areas/convex.geojson, 4 drones, took 4.9 s and 64 MB with 1000
+/// lanes, 29 s and 200 MB with 2000; 9300 lanes passed 4 GB). The largest area
+/// (kMaxSearchAreaKm2, 141 km across) at the default 60 m and 10 % overlap needs
+/// about 1700.
+inline constexpr double kMaxPlanLanes = 2'000.0;
+
 /// The fleet and how it flies.
 struct FleetSpec {
   std::vector<int> receiver_ids;  ///< one per drone, 1..254, distinct
@@ -117,8 +136,10 @@ struct Plan {
 /// naming the field when the fleet is unusable (receiver_ids empty, repeated or
 /// outside 1..254; no launch_points, or one inside a no-fly zone; site_drones
 /// not one count >= 0 per site adding up to the fleet; speed_mps, endurance_s or
-/// altitude_m <= 0; swap_s or turn_cost_s < 0; no camera; camera_pitch_deg
-/// outside [-90, 0); side_overlap outside [0, 1)) or the area is empty, and
+/// altitude_m <= 0; swap_s or turn_cost_s < 0; any number beyond the kMax*
+/// above; no camera; camera_pitch_deg outside [-90, 0); side_overlap outside
+/// [0, 1); more than kMaxPlanLanes lanes, the message then starting with
+/// "side_overlap") or the area is empty, and
 /// std::runtime_error naming endurance_s, the farthest point (lat, lon) and the
 /// range needed when some point is out of reach from every site.
 Plan PlanSearch(const SearchArea& area, const FleetSpec& fleet,

@@ -16,13 +16,16 @@
 // A record is committed when its '\n' is in the file. Each Append writes its line
 // with one write(2), so a process killed mid-append leaves at most one torn line,
 // the last; Open drops it. A bad line anywhere else is corruption and Open refuses
-// the file rather than silently losing what follows.
+// the file rather than silently losing what follows, unless asked to recover
+// (JournalCorruption::kKeepValidPrefix): then the records before the bad line
+// are kept and everything from it on is moved aside to a file of its own.
 #pragma once
 
 #include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <nlohmann/json.hpp>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 
@@ -54,13 +57,35 @@ enum class JournalSync : std::uint8_t {
   kOnSync,
 };
 
+/// What Open does with a bad line before the last (the last may always be torn).
+enum class JournalCorruption {
+  /// Throw JournalCorruptError: nothing is replayed and the file is left as it is.
+  kRefuse,
+  /// Keep the records before the bad line; move the bad line and every line
+  /// after it to JournalRecovery::moved_aside, then cut them off the journal.
+  kKeepValidPrefix,
+};
+
+/// Thrown by Journal::Open for a bad line before the last under
+/// JournalCorruption::kRefuse. The message names the file and the 1-based line.
+class JournalCorruptError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 /// What Open found in an existing file.
 struct JournalRecovery {
   std::uint64_t records = 0;  ///< intact records replayed
-  /// 1 when a torn or corrupt last line was cut off the file (a kill mid-append,
-  /// or a power cut under JournalSync::kOnSync), else 0.
+  /// Lines cut off the file: 1 for a torn or corrupt last line (a kill
+  /// mid-append, or a power cut under JournalSync::kOnSync); under
+  /// kKeepValidPrefix the bad line and every line after it. Else 0.
   std::uint64_t dropped_lines = 0;
-  std::uint64_t dropped_bytes = 0;  ///< bytes cut off with it
+  std::uint64_t dropped_bytes = 0;  ///< bytes cut off with them
+  /// Under kKeepValidPrefix, where the lines cut off after a corrupt line went
+  /// (`<journal>.corrupt`, or `.corrupt.2`, ... when taken); empty otherwise.
+  std::filesystem::path moved_aside;
+  /// Why the first dropped line was bad, with its 1-based line number (kKeepValidPrefix).
+  std::string corruption;
 };
 
 /// An open journal file, positioned for appending. Owns the file descriptor and an
@@ -75,12 +100,14 @@ class Journal {
   /// in file order before Open returns. A torn or corrupt last line is cut off the
   /// file and reported in recovery(). Throws std::runtime_error naming the file
   /// (and the 1-based line for corruption) when the file cannot be opened, read or
-  /// locked (another process holds it), or a line other than the last is not a
-  /// valid record (bad checksum, bad JSON, missing field, seq not one more than
-  /// the line before), or any line has a format version above kJournalVersion.
-  /// Exceptions thrown by `visit` propagate.
+  /// locked (another process holds it), or any line has a format version above
+  /// kJournalVersion; JournalCorruptError when a line other than the last is not
+  /// a valid record (bad checksum, bad JSON, missing field, seq not one more than
+  /// the line before) and `corruption` is kRefuse (kKeepValidPrefix: see
+  /// JournalRecovery). Exceptions thrown by `visit` propagate.
   static Journal Open(const std::filesystem::path& path, const Visitor& visit,
-                      JournalSync sync = JournalSync::kEveryAppend);
+                      JournalSync sync = JournalSync::kEveryAppend,
+                      JournalCorruption corruption = JournalCorruption::kRefuse);
 
   Journal(Journal&& other) noexcept;
   Journal& operator=(Journal&& other) noexcept;
