@@ -5,6 +5,8 @@
 
 #include <openssl/evp.h>
 
+#include <algorithm>
+
 #include <memory>
 #include <stdexcept>
 #include <string>
