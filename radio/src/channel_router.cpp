@@ -170,7 +170,9 @@ Nanos ChannelRouter::NextWakeup(std::size_t channel) const {
   return this->channel(channel).NextWakeup();
 }
 
-std::vector<SchedulerEvent> ChannelRouter::TakeEvents() { return std::exchange(events_, {}); }
+std::vector<SchedulerEvent> ChannelRouter::TakeEvents() {
+  return std::exchange(events_, {});
+}
 
 const MasterScheduler& ChannelRouter::channel(std::size_t channel) const {
   assert(channel < channels_.size());

@@ -33,7 +33,8 @@ RadioConfig::ChannelOverride ReadChannelOverride(const Field& field, int channel
   if (const std::optional<Field> turnaround = entry.Find("turnaround_ms")) {
     out.turnaround_ms = turnaround->Number(Range{0.0, kMaxTurnaroundMs});
   }
-  if (const std::optional<Field> loss = entry.Find("loss")) out.loss = loss->Number(Range{0.0, 1.0});
+  if (const std::optional<Field> loss = entry.Find("loss"))
+    out.loss = loss->Number(Range{0.0, 1.0});
   if (const std::optional<Field> vehicles = entry.Find("vehicles")) {
     for (const Field& id : vehicles->Elements()) {
       out.vehicles.push_back(static_cast<int>(id.Integer(kMinReceiverId, kMaxReceiverId)));

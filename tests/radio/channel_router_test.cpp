@@ -85,8 +85,8 @@ class MultiChannelNet {
  private:
   std::vector<Burst> StepServer(std::size_t channel, Nanos now,
                                 std::span<const std::uint8_t> received) {
-    std::vector<Burst> bursts =
-        router_.Step(now, channel, unplugged_[channel] ? std::span<const std::uint8_t>{} : received);
+    std::vector<Burst> bursts = router_.Step(
+        now, channel, unplugged_[channel] ? std::span<const std::uint8_t>{} : received);
     for (auto& e : router_.TakeEvents()) events_.push_back(std::move(e));
     if (unplugged_[channel]) bursts.clear();
     return bursts;
@@ -151,8 +151,12 @@ TEST(ChannelRouter, RoutesUploadsCommandsAndReportsByTheVehiclesChannel) {
         << "its chunks and its command, vehicle " << int{id};
   }
   // Nothing addressed to a vehicle went over the other channel.
-  for (const std::uint8_t id : {1, 3}) EXPECT_FALSE(net.heard(1).contains(id));
-  for (const std::uint8_t id : {2, 4}) EXPECT_FALSE(net.heard(0).contains(id));
+  for (const int id : {1, 3}) {
+    EXPECT_FALSE(net.heard(1).contains(static_cast<std::uint8_t>(id)));
+  }
+  for (const int id : {2, 4}) {
+    EXPECT_FALSE(net.heard(0).contains(static_cast<std::uint8_t>(id)));
+  }
   EXPECT_EQ(net.router().stats().requests_completed, ids.size());
   EXPECT_EQ(net.router().channel(0).stats().requests_completed +
                 net.router().channel(1).stats().requests_completed,

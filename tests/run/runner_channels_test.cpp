@@ -36,11 +36,10 @@ TEST(RunScenarioChannels, ADeadChannelGroundsItsVehiclesAndTheOtherFliesOn) {
     other_silent = server.scheduler().health(0).silent;
   };
   // Channel 1 loses everything: its modem is as good as unplugged.
-  const Report report =
-      RunScenario(SmallArea("radio:\n  channels: 2\n  channel_overrides:\n"
-                            "    - {channel: 1, loss: 1.0, vehicles: [2]}\n"),
-                  options)
-          .report;
+  const Report report = RunScenario(SmallArea("radio:\n  channels: 2\n  channel_overrides:\n"
+                                              "    - {channel: 1, loss: 1.0, vehicles: [2]}\n"),
+                                    options)
+                            .report;
   EXPECT_TRUE(silent);
   EXPECT_FALSE(other_silent);
   EXPECT_EQ(report.vehicles.at(2).final_state, "idle");

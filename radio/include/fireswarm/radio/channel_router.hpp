@@ -73,8 +73,7 @@ class ChannelRouter {
   /// Steps channel `channel` with the bytes it received up to `now`; returns the
   /// bursts to transmit on that channel. `now` must not decrease per channel.
   /// Never throws (a channel out of range is an internal error: asserted).
-  std::vector<Burst> Step(Nanos now, std::size_t channel,
-                          std::span<const std::uint8_t> received);
+  std::vector<Burst> Step(Nanos now, std::size_t channel, std::span<const std::uint8_t> received);
   /// When any channel must next be stepped without new bytes.
   Nanos NextWakeup() const;
   /// When `channel` must next be stepped without new bytes.
