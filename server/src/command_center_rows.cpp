@@ -248,7 +248,7 @@ nlohmann::json ChannelsJson(const radio_stats_t& m) {
                         {"retries", m.channel_retries.at(k)},
                         {"timeouts", m.channel_timeouts.at(k)},
                         {"vehicles", std::move(vehicles)},
-                        {"silent", m.channel_silent.at(k)}});
+                        {"silent", m.channel_silent.at(k) != 0}});
   }
   return channels;
 }

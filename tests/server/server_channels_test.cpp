@@ -20,6 +20,7 @@ using testing::FakeVehicle;
 using testing::kFrame;
 using testing::kSecond;
 using testing::Missions;
+using common::Nanos;
 
 // Vehicles 1 and 3 fixed on channel 1, 2 and 4 balanced onto channel 0.
 class TwoChannelFleet {
