@@ -10,9 +10,11 @@ namespace po = boost::program_options;
 
 void AddLinkOptions(po::options_description& options, LinkFlags& f) {
   auto add = options.add_options();
-  add("udp", po::value(&f.udp)->multitoken()->value_name("LOCAL REMOTE"),
-      "UDP link: bind LOCAL (host:port, port 0 = any) and send to REMOTE (host:port)");
-  add("serial", po::value(&f.serial)->value_name("DEVICE"), "serial link: the modem's device");
+  add("udp", po::value(&f.udp)->multitoken()->composing()->value_name("LOCAL REMOTE"),
+      "UDP link: bind LOCAL (host:port, port 0 = any) and send to REMOTE (host:port); serve: "
+      "once per radio channel");
+  add("serial", po::value(&f.serial)->composing()->value_name("DEVICE"),
+      "serial link: the modem's device; serve: once per radio channel");
   add("baud", po::value(&f.baud)->default_value(f.baud),
       "serial speed, 8N1 (with --serial); turn timing assumes it on both ends");
   add("mode", po::value(&f.mode)->default_value(f.mode), "poll or slots, on both ends");
@@ -30,7 +32,7 @@ void AddLinkOptions(po::options_description& options, LinkFlags& f) {
 constexpr double kMaxSerialBaud = 4'000'000.0;
 
 void CheckLinkFlags(const std::string& command, const LinkFlags& f,
-                    const po::variables_map& values) {
+                    const po::variables_map& values, std::size_t max_links) {
   const std::string prefix = "fireswarm " + command + ": ";
   const bool udp = values.count("udp") != 0U;
   const bool serial = values.count("serial") != 0U;
@@ -40,9 +42,15 @@ void CheckLinkFlags(const std::string& command, const LinkFlags& f,
                      "'fireswarm " +
                      command + " --help')");
   }
-  if (udp && f.udp.size() != 2) {
+  if (udp && (f.udp.empty() || f.udp.size() % 2 != 0)) {
     throw UsageError(prefix + "--udp must be two endpoints, LOCAL REMOTE (host:port each), got " +
                      std::to_string(f.udp.size()) + " values");
+  }
+  if (LinkCount(f) > max_links) {
+    throw UsageError(prefix + (max_links == 1 ? std::string("give one link, got ")
+                                              : "give at most " + std::to_string(max_links) +
+                                                    " links (one per radio channel), got ") +
+                     std::to_string(LinkCount(f)));
   }
   if (!serial && !values["baud"].defaulted()) {
     throw UsageError(prefix + "--baud goes with --serial");
@@ -59,14 +67,18 @@ void CheckLinkFlags(const std::string& command, const LinkFlags& f,
   }
 }
 
-OpenedLink OpenLink(const LinkFlags& f) {
+std::size_t LinkCount(const LinkFlags& f) {
+  return f.serial.empty() ? f.udp.size() / 2 : f.serial.size();
+}
+
+OpenedLink OpenLink(const LinkFlags& f, std::size_t index) {
   OpenedLink opened;
   if (f.serial.empty()) {
-    auto udp = std::make_unique<radio::UdpLink>(f.udp[0], f.udp[1]);
+    auto udp = std::make_unique<radio::UdpLink>(f.udp.at(2 * index), f.udp.at(2 * index + 1));
     opened.udp = udp.get();
     opened.link = std::move(udp);
   } else {
-    opened.link = radio::OpenSerialLink(f.serial, f.baud);
+    opened.link = radio::OpenSerialLink(f.serial.at(index), f.baud);
   }
   return opened;
 }

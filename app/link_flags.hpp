@@ -15,8 +15,8 @@
 namespace fireswarm::app {
 
 struct LinkFlags {
-  std::vector<std::string> udp;  ///< LOCAL REMOTE
-  std::string serial;            ///< device, empty = none
+  std::vector<std::string> udp;     ///< LOCAL REMOTE, LOCAL REMOTE, ... (one pair per link)
+  std::vector<std::string> serial;  ///< devices, one per link; empty = none
   unsigned baud = 57'600;
   std::string mode = "slots";
   /// secure (the default; issue 17), crc16 or xor.
@@ -30,17 +30,23 @@ struct LinkFlags {
 void AddLinkOptions(boost::program_options::options_description& options, LinkFlags& flags);
 
 /// Throws UsageError naming the flag ("fireswarm <command>: --mode ...") unless
-/// exactly one link is given and every link flag is valid.
+/// one link is given (or, with `max_links` > 1, 1..max_links of one kind: one
+/// radio channel each) and every link flag is valid.
 void CheckLinkFlags(const std::string& command, const LinkFlags& flags,
-                    const boost::program_options::variables_map& values);
+                    const boost::program_options::variables_map& values,
+                    std::size_t max_links = 1);
+
+/// How many links the flags give. Precondition: CheckLinkFlags passed.
+std::size_t LinkCount(const LinkFlags& flags);
 
 /// The link the flags name, opened; `udp` points into it for a UDP link.
 struct OpenedLink {
   std::unique_ptr<radio::IoLink> link;
   radio::UdpLink* udp = nullptr;
 };
-/// Throws as radio::OpenSerialLink and radio::UdpLink. Precondition: CheckLinkFlags passed.
-OpenedLink OpenLink(const LinkFlags& flags);
+/// Link `index` (0: the first --serial or --udp pair). Throws as
+/// radio::OpenSerialLink and radio::UdpLink. Precondition: CheckLinkFlags passed.
+OpenedLink OpenLink(const LinkFlags& flags, std::size_t index = 0);
 
 /// The link timing, mode and checksum the flags select. Precondition: CheckLinkFlags passed.
 radio::LinkMode ModeOf(const LinkFlags& flags);

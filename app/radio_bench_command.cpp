@@ -35,6 +35,7 @@ using Milliseconds = std::chrono::duration<double, std::milli>;
 
 struct Flags {
   int vehicles = 10;
+  int channels = 1;
   double seconds = 60.0;
   double drain_seconds = 30.0;
   int baud = 57'600;
@@ -69,8 +70,9 @@ std::string Text(T value) {
 }
 
 // RadioBenchConfig field -> the flag that sets it, so Validate()'s messages name flags.
-constexpr std::array<std::pair<const char*, const char*>, 10> kFlagOfField{{
+constexpr std::array<std::pair<const char*, const char*>, 11> kFlagOfField{{
     {"vehicles", "vehicles"},
+    {"channels", "channels"},
     {"seconds", "seconds"},
     {"drain_seconds", "drain-seconds"},
     {"baud", "baud"},
@@ -107,6 +109,7 @@ RadioBenchConfig ToConfig(const Flags& f) {
   }
   RadioBenchConfig c;
   c.vehicles = f.vehicles;
+  c.channels = f.channels;
   c.seconds = f.seconds;
   c.drain_seconds = f.drain_seconds;
   c.mode = *mode;
@@ -133,6 +136,7 @@ nlohmann::ordered_json ToJson(const RadioBenchConfig& c, const RadioBenchResult&
   j["mode"] = std::string(radio::ToString(c.mode));
   j["checksum"] = std::string(radio::ToString(c.checksum));
   j["vehicles"] = c.vehicles;
+  j["channels"] = c.channels;
   j["baud"] = c.baud;
   j["turnaround_ms"] = Milliseconds(c.turnaround).count();
   j["loss"] = c.loss;
@@ -176,20 +180,31 @@ nlohmann::ordered_json ToJson(const RadioBenchConfig& c, const RadioBenchResult&
                            {"reports_sent", v.reports_sent}});
   }
   j["per_vehicle"] = per_vehicle;
+  nlohmann::ordered_json per_channel = nlohmann::ordered_json::array();
+  for (std::size_t k = 0; k < r.per_channel.size(); ++k) {
+    const bench::ChannelFigures& ch = r.per_channel[k];
+    per_channel.push_back({{"channel", k},
+                           {"vehicles", ch.vehicles},
+                           {"busy_fraction", ch.busy_fraction},
+                           {"server_step_s", ch.server_step_s}});
+  }
+  j["per_channel"] = per_channel;
   j["wall_seconds"] = wall_seconds;
   return j;
 }
 
 void PrintTable(const RadioBenchConfig& c, const RadioBenchResult& r, double wall_seconds) {
   std::cout << std::fixed << std::setprecision(kTableDecimals);
-  std::cout << "radio-bench: " << c.vehicles << " vehicles, " << radio::ToString(c.mode)
+  std::cout << "radio-bench: " << c.vehicles << " vehicles on " << c.channels << " channel"
+            << (c.channels == 1 ? "" : "s") << ", " << radio::ToString(c.mode)
             << " mode, " << c.baud << " baud, turnaround " << Milliseconds(c.turnaround).count()
             << " ms, loss " << c.loss << ", " << radio::ToString(c.checksum) << ", " << c.seconds
             << " s (+ drain)\n";
   const auto row = [](const char* name, const auto& value) {
     std::cout << "  " << std::left << std::setw(34) << name << value << "\n";
   };
-  row("channel busy fraction", r.busy_fraction);
+  row(c.channels == 1 ? "channel busy fraction" : "busiest channel busy fraction",
+      r.busy_fraction);
   row("useful payload bytes/s", r.payload_bytes_per_s);
   row("telemetry rate min / mean (Hz)",
       Text(r.telemetry_hz_min) + " / " + Text(r.telemetry_hz_mean));
@@ -214,6 +229,14 @@ void PrintTable(const RadioBenchConfig& c, const RadioBenchResult& r, double wal
   if (c.mission_waypoints > 0) {
     row("mission upload (s)", r.mission_upload_s ? Text(*r.mission_upload_s) : "failed");
   }
+  if (r.per_channel.size() > 1) {
+    for (std::size_t k = 0; k < r.per_channel.size(); ++k) {
+      const bench::ChannelFigures& ch = r.per_channel[k];
+      std::cout << "  channel " << k << ": " << ch.vehicles << " vehicles, busy "
+                << Text(ch.busy_fraction) << ", server step CPU " << Text(ch.server_step_s)
+                << " s\n";
+    }
+  }
   row("simulated / wall time (s)", Text(r.sim_seconds) + " / " + Text(wall_seconds));
 }
 
@@ -224,6 +247,9 @@ int RunRadioBench(const std::vector<std::string>& args) {
   po::options_description options("radio-bench options");
   auto add = options.add_options();
   add("vehicles", po::value(&f.vehicles)->default_value(f.vehicles), "number of vehicles, 1..254");
+  add("channels", po::value(&f.channels)->default_value(f.channels),
+      "radio channels (separate frequencies, one server modem each), 1..16; vehicles in "
+      "balanced groups");
   add("seconds", po::value(&f.seconds)->default_value(f.seconds), "simulated seconds of reports");
   add("drain-seconds", po::value(&f.drain_seconds)->default_value(f.drain_seconds),
       "at most this long afterwards for queued reports to arrive");

@@ -83,7 +83,7 @@ fs::path RadioStatePath(const Flags& f) {
 }
 
 void CheckFlags(const Flags& f, const po::variables_map& values) {
-  CheckLinkFlags(kName, f.link, values);
+  CheckLinkFlags(kName, f.link, values, radio::kMaxChannels);
   if (f.area.empty()) BadFlag("area", "given (a GeoJSON file)", "");
   if (f.drones < 1 || f.drones > kMaxId) BadFlag("drones", "in 1..254", std::to_string(f.drones));
   if (f.first_id < 1 || f.first_id + f.drones - 1 > kMaxId) {
@@ -173,6 +173,16 @@ server::ServerConfig ServerConfigFor(const Flags& f, const planner::SearchArea& 
     }
   }
   config.radio.timing.baud = static_cast<int>(f.link.baud);
+  // Several links, one radio channel each (issue 21): the drones' IDs in order,
+  // in contiguous blocks as even as can be, the first block on the first link.
+  const std::size_t links = LinkCount(f.link);
+  if (links > 1) {
+    config.channels.assign(links, config.radio.timing);
+    for (int i = 0; i < f.drones; ++i) {
+      config.vehicle_channels[f.first_id + i] =
+          static_cast<std::size_t>(i) * links / static_cast<std::size_t>(f.drones);
+    }
+  }
   config.telemetry_hz = f.telemetry_hz;
   config.no_fly = area.no_fly;
   config.area = area.area;
@@ -364,7 +374,7 @@ int RunServe(const std::vector<std::string>& args) {
   const po::options_description options = OptionsFor(f);
   po::variables_map values;
   if (!ParseCommandLine(kName,
-                        "--area A.geojson --drones N (--serial DEVICE | --udp LOCAL REMOTE) "
+                        "--area A.geojson --drones N (--serial DEVICE | --udp LOCAL REMOTE)... "
                         "(--start | --keys DIR (--lcm URL | --http HOST:PORT)) [options]",
                         options, {}, args, values)) {
     return kExitOk;
@@ -414,14 +424,23 @@ int RunServe(const std::vector<std::string>& args) {
   if (resumed) PrintResumed(*journal, entries.size(), server, clock_offset);
 
   const StopOnSignals stop_on_signals;
-  const OpenedLink link = OpenLink(f.link);
+  std::vector<OpenedLink> links;
+  std::vector<radio::IoLink*> channels;
+  for (std::size_t k = 0; k < LinkCount(f.link); ++k) {
+    links.push_back(OpenLink(f.link, k));
+    channels.push_back(links.back().link.get());
+  }
   std::optional<server::LcmBridge> bridge = BridgeFor(f);
-  ServeLoop loop(server, *link.link, journal ? &*journal : nullptr, bridge ? &*bridge : nullptr);
+  ServeLoop loop(server, channels, journal ? &*journal : nullptr, bridge ? &*bridge : nullptr);
   const std::unique_ptr<server::WebServer> web = StartWebServer(kName, f.web, false);
 
   CompleteSetup(f, area, clock_offset, server);
   loop.FlushJournal();
-  if (f.link.print_bound_port) std::cout << "bound_port=" << link.udp->local_port() << std::endl;
+  if (f.link.print_bound_port) {
+    for (const OpenedLink& link : links) {
+      std::cout << "bound_port=" << link.udp->local_port() << std::endl;
+    }
+  }
 
   ServeOptions run;
   run.clock_offset = clock_offset;

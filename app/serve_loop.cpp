@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <chrono>
 #include <iostream>
+#include <stdexcept>
 #include <string>
+#include <thread>
 #include <utility>
 #include <variant>
 #include <vector>
@@ -22,6 +24,8 @@ using Clock = std::chrono::steady_clock;
 // The loop wakes at least this often: to see a stop signal, and operator
 // commands arriving on LCM (the wait is on the radio link only).
 constexpr Nanos kMaxWait = std::chrono::milliseconds(50);
+// Several links: how long the loop waits on one before it looks at the next.
+constexpr Nanos kLinkSlice = std::chrono::milliseconds(1);
 
 std::int64_t UnixMicros() {
   return std::chrono::duration_cast<std::chrono::microseconds>(
@@ -73,10 +77,11 @@ nlohmann::ordered_json EventLine(const server::JournalEntry& entry) {
   return line;
 }
 
-ServeLoop::ServeLoop(server::Server& server, radio::IoLink& link, server::Journal* journal,
-                     server::LcmBridge* bridge)
+ServeLoop::ServeLoop(server::Server& server, std::vector<radio::IoLink*> links,
+                     server::Journal* journal, server::LcmBridge* bridge)
     : server_(server),
-      link_(link),
+      links_(std::move(links)),
+      failed_(links_.size(), false),
       journal_(journal),
       bridge_(bridge),
       sent_parser_(server.scheduler().config().checksum) {}
@@ -146,6 +151,53 @@ void ServeLoop::WatchAuthentication(Nanos now) {
   }
 }
 
+void ServeLoop::StepChannel(std::size_t channel, Nanos now, std::vector<std::uint8_t>& received) {
+  received.clear();
+  radio::IoLink& link = *links_[channel];
+  try {
+    if (!failed_[channel]) link.Receive(now, received);
+  } catch (const std::runtime_error& e) {
+    // A dead modem: its channel goes silent (its vehicles lost), the others fly on.
+    failed_[channel] = true;
+    nlohmann::ordered_json line;
+    line["event"] = "link_failed";
+    line["t_s"] = common::ToSeconds(now);
+    line["channel"] = channel;
+    line["why"] = e.what();
+    std::cout << line.dump() << std::endl;
+  }
+  for (const radio::Burst& burst : server_.Step(now, channel, received)) {
+    if (!failed_[channel]) link.Transmit(now, burst.start, burst.bytes);
+    CountFrames(burst);
+  }
+}
+
+void ServeLoop::WaitReadable(Nanos timeout) {
+  std::vector<radio::IoLink*> live;
+  for (std::size_t k = 0; k < links_.size(); ++k) {
+    if (!failed_[k]) live.push_back(links_[k]);
+  }
+  if (live.size() == 1) {
+    live.front()->WaitReadable(timeout);
+    return;
+  }
+  // Several links: wait on each in turn in short slices (a link can wait only
+  // on itself), so bytes on any are taken within a slice.
+  const auto deadline = Clock::now() + timeout;
+  while (!live.empty()) {
+    for (radio::IoLink* link : live) {
+      const Nanos left = std::chrono::duration_cast<Nanos>(deadline - Clock::now());
+      if (left <= Nanos{0}) return;
+      try {
+        if (link->WaitReadable(std::min(left, kLinkSlice))) return;
+      } catch (const std::runtime_error&) {
+        return;  // StepChannel reports it
+      }
+    }
+  }
+  std::this_thread::sleep_for(timeout);  // every link failed: the loop still keeps time
+}
+
 ServeStop ServeLoop::Run(const ServeOptions& options) {
   const Clock::time_point start = Clock::now();
   const auto now = [&] { return options.clock_offset + (Clock::now() - start); };
@@ -162,14 +214,9 @@ ServeStop ServeLoop::Run(const ServeOptions& options) {
       stop = ServeStop::kSignal;
       break;
     }
-    received.clear();
-    link_.Receive(now(), received);
     const Nanos t = now();
     HandleOperatorCommands(t);
-    for (const radio::Burst& burst : server_.Step(t, received)) {
-      link_.Transmit(t, burst.start, burst.bytes);
-      CountFrames(burst);
-    }
+    for (std::size_t k = 0; k < links_.size(); ++k) StepChannel(k, t, received);
     FlushJournal();  // durable before anything else happens
     WatchAuthentication(t);
     if (bridge_ != nullptr)
@@ -200,7 +247,7 @@ ServeStop ServeLoop::Run(const ServeOptions& options) {
       next = std::min(next, common::FromSeconds(std::min(bridge_->NextPublishS(), 1e9)));
     }
     if (end != Nanos::max()) next = std::min(next, options.clock_offset + end);
-    link_.WaitReadable(std::max(Nanos{0}, next - now()));
+    WaitReadable(std::max(Nanos{0}, next - now()));
   }
   wall_seconds_ = common::ToSeconds(Clock::now() - start);
   return stop;
@@ -219,6 +266,7 @@ nlohmann::ordered_json ServeLoop::Summary() const {
     nlohmann::ordered_json v;
     v["id"] = id;
     v["link"] = std::string(server::ToString(server_.registry().LinkAt(id, clock_s_)));
+    v["channel"] = server_.scheduler().ChannelOf(id);
     if (const radio::FrameSecurity* security = server_.scheduler().config().security.get()) {
       const auto found = security->stats().find(id);
       v["radio_auth"] = std::string(radio::ToString(found == security->stats().end()
@@ -257,8 +305,9 @@ nlohmann::ordered_json ServeLoop::Summary() const {
   }
   j["tracks"] = std::move(tracks);
   j["frames_sent"] = frames_sent_;
-  const radio::SchedulerStats& stats = server_.scheduler().stats();
-  j["radio"] = {{"bytes_sent", server_.bytes_sent()},
+  const radio::SchedulerStats stats = server_.scheduler().stats();
+  j["radio"] = {{"channels", server_.scheduler().channel_count()},
+                {"bytes_sent", server_.bytes_sent()},
                 {"bytes_received", server_.bytes_received()},
                 {"requests_sent", stats.requests_sent},
                 {"retries", stats.retries},

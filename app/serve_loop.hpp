@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "fireswarm/common/time.hpp"
 #include "fireswarm/radio/frame.hpp"
@@ -47,7 +48,11 @@ const char* ToString(ServeStop stop);
 class ServeLoop {
  public:
   /// Everything given must outlive the loop; `journal` and `bridge` may be null.
-  ServeLoop(server::Server& server, radio::IoLink& link, server::Journal* journal,
+  /// `links`: one per radio channel of the server (link k carries channel k).
+  /// A link whose reads fail (a modem unplugged) is reported on stdout
+  /// ({"event": "link_failed", "channel": k, ...}) and no longer used: its channel
+  /// goes silent and its vehicles lost, the other channels fly on.
+  ServeLoop(server::Server& server, std::vector<radio::IoLink*> links, server::Journal* journal,
             server::LcmBridge* bridge);
 
   /// Appends the server's pending journal entries (and prints them), at `t_s`.
@@ -67,9 +72,14 @@ class ServeLoop {
   // authentication (wrong or missing key), so it is not mistaken for a silent link.
   void WatchAuthentication(common::Nanos now);
   void HandleOperatorCommands(common::Nanos now);
+  // One channel's bytes in, its bursts out; a failed link is reported once.
+  void StepChannel(std::size_t channel, common::Nanos now, std::vector<std::uint8_t>& received);
+  // Waits until a link has bytes or `timeout` passes.
+  void WaitReadable(common::Nanos timeout);
 
   server::Server& server_;
-  radio::IoLink& link_;
+  std::vector<radio::IoLink*> links_;
+  std::vector<bool> failed_;  // per link: its reads failed
   server::Journal* journal_;
   server::LcmBridge* bridge_;
   radio::FrameParser sent_parser_;                    // the server's own bursts, to count them

@@ -54,4 +54,21 @@ void ChannelLoop::Transmit(RadioId radio, Nanos now, const std::vector<Burst>& b
   for (const Burst& burst : bursts) channel_.Transmit(radio, now, burst.start, burst.bytes);
 }
 
+void RunLoopsUntil(std::span<ChannelLoop* const> loops, Nanos end) {
+  while (true) {
+    ChannelLoop* next = nullptr;
+    Nanos t = Nanos::max();
+    for (ChannelLoop* loop : loops) {
+      const Nanos at = loop->NextEventTime();
+      if (at < t) {
+        t = at;
+        next = loop;
+      }
+    }
+    if (next == nullptr || t > end) break;
+    next->StepAt(t);
+  }
+  for (ChannelLoop* loop : loops) loop->RunUntil(end);
+}
+
 }  // namespace fireswarm::radio

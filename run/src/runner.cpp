@@ -67,6 +67,14 @@ radio::RadioStep RadioSideOf(agents::Vehicle& vehicle, std::vector<SilentWindow>
 constexpr const char* kRunnerOperator = "runner";
 constexpr std::int64_t kStartNonce = 1;
 
+radio::LinkTiming TimingOf(const RadioConfig& radio) {
+  radio::LinkTiming timing;
+  timing.baud = radio.baud;
+  timing.turnaround = std::chrono::duration_cast<Nanos>(
+      std::chrono::duration<double, std::milli>(radio.turnaround_ms));
+  return timing;
+}
+
 server::ServerConfig MakeServerConfig(const Scenario& scenario, const RunOptions& options,
                                       const common::SecretKey& runner_key) {
   server::ServerConfig config;
@@ -79,9 +87,14 @@ server::ServerConfig MakeServerConfig(const Scenario& scenario, const RunOptions
     for (const int id : scenario.fleet.ReceiverIds()) ids.push_back(static_cast<std::uint8_t>(id));
     config.radio.security = radio::SimulationServerSecurity(scenario.seed, ids);
   }
-  config.radio.timing.baud = scenario.radio.baud;
-  config.radio.timing.turnaround = std::chrono::duration_cast<Nanos>(
-      std::chrono::duration<double, std::milli>(scenario.radio.turnaround_ms));
+  config.radio.timing = TimingOf(scenario.radio);
+  // Several channels: each its own baud and turnaround, vehicles fixed or balanced.
+  for (int k = 0; k < scenario.radio.channels; ++k) {
+    config.channels.push_back(TimingOf(scenario.radio.ChannelAt(k)));
+  }
+  for (const RadioConfig::ChannelOverride& o : scenario.radio.channel_overrides) {
+    for (const int id : o.vehicles) config.vehicle_channels[id] = static_cast<std::size_t>(o.channel);
+  }
   // The zones the plan kept out of, in the same local frame as the server's.
   config.no_fly = scenario.area.no_fly;
   config.no_fly_seed = static_cast<unsigned>(scenario.seed);
@@ -95,12 +108,13 @@ server::ServerConfig MakeServerConfig(const Scenario& scenario, const RunOptions
   return config;
 }
 
-radio::ChannelConfig MakeChannelConfig(const Scenario& scenario, const radio::LinkTiming& timing) {
+radio::ChannelConfig MakeChannelConfig(const Scenario& scenario, std::size_t channel,
+                                      const radio::LinkTiming& timing) {
   radio::ChannelConfig config;
   config.baud = timing.baud;
   config.bits_per_byte = timing.bits_per_byte;
   config.turnaround = timing.turnaround;
-  config.loss = scenario.radio.loss;
+  config.loss = scenario.radio.ChannelAt(static_cast<int>(channel)).loss;
   return config;
 }
 
@@ -163,14 +177,20 @@ class Lockstep {
         fleet_(simulation_),
         server_config_(MakeServerConfig(scenario, options, runner_key_)),
         frame_(scenario.area.frame),
-        server_(std::make_unique<server::Server>(server_config_, frame_)),
-        // Through server_, which a restart replaces.
-        radio_(MakeChannelConfig(scenario, server_config_.radio.timing),
-               scenario.seed ^ kChannelSeedSalt,
-               radio::LoopMaster{[this] { return server_->NextWakeup(); },
-                                 [this](Nanos now, std::span<const std::uint8_t> received) {
-                                   return server_->Step(now, received);
-                                 }}) {
+        server_(std::make_unique<server::Server>(server_config_, frame_)) {
+    const std::vector<radio::SchedulerConfig> channels = server_config_.ChannelConfigs();
+    for (std::size_t k = 0; k < channels.size(); ++k) {
+      // Through server_, which a restart replaces. Separate frequencies: each
+      // channel its own generator (channel 0's as the single channel's).
+      radios_.push_back(std::make_unique<radio::ChannelLoop>(
+          MakeChannelConfig(scenario, k, channels[k].timing),
+          (scenario.seed ^ kChannelSeedSalt) + k,
+          radio::LoopMaster{[this, k] { return server_->NextWakeup(k); },
+                            [this, k](Nanos now, std::span<const std::uint8_t> received) {
+                              return server_->Step(now, k, received);
+                            }}));
+      loops_.push_back(radios_.back().get());
+    }
     for (const int id : scenario.fleet.ReceiverIds()) {
       agents::VehicleConfig config;
       config.id = static_cast<std::uint8_t>(id);
@@ -180,7 +200,9 @@ class Lockstep {
       if (config.radio.checksum == radio::ChecksumMode::kSecure) {
         config.radio.security = radio::SimulationVehicleSecurity(scenario.seed, config.id);
       }
-      config.radio.timing = server_config_.radio.timing;
+      server_->AddVehicle(id);
+      const std::size_t channel = server_->scheduler().ChannelOf(config.id);
+      config.radio.timing = channels[channel].timing;
       config.camera = *scenario.fleet.camera;
       auto vehicle = std::make_unique<agents::Vehicle>(config);
       // The mount pitch is a parameter (the seed's EEPROM), set before the flight.
@@ -189,8 +211,7 @@ class Lockstep {
       pitch.value = static_cast<float>(scenario.fleet.camera_pitch_deg);
       vehicle->OnParamWrite(pitch);
       fleet_.Add(*vehicle);
-      server_->AddVehicle(id);
-      radio_.AddVehicle(RadioSideOf(*vehicle, SilentWindowsOf(scenario, id)));
+      radios_[channel]->AddVehicle(RadioSideOf(*vehicle, SilentWindowsOf(scenario, id)));
       vehicles_.push_back(std::move(vehicle));
     }
     server_->LoadMission(planned.missions, 0.0, planned.airspace);
@@ -207,7 +228,7 @@ class Lockstep {
   /// to the step's end.
   void Step() {
     fleet_.Step();
-    radio_.RunUntil(fleet_.now());
+    radio::RunLoopsUntil(loops_, fleet_.now());
   }
 
   double time_s() const { return simulation_.time_s(); }
@@ -238,7 +259,12 @@ class Lockstep {
     server_ =
         std::make_unique<server::Server>(server::Server::Restore(server_config_, frame_, entries));
   }
-  const radio::SharedChannel& channel() const { return radio_.channel(); }
+  /// The busiest channel's airtime (one channel: its airtime).
+  Nanos BusiestAirtime() const {
+    Nanos busiest{0};
+    for (const auto& loop : radios_) busiest = std::max(busiest, loop->channel().stats().busy);
+    return busiest;
+  }
   const std::vector<std::unique_ptr<agents::Vehicle>>& vehicles() const { return vehicles_; }
 
   std::size_t PendingReports() const {
@@ -251,7 +277,7 @@ class Lockstep {
   internal::FinalState Final() const {
     internal::FinalState out;
     out.sim_seconds = time_s();
-    out.radio_busy_s = common::ToSeconds(channel().stats().busy);
+    out.radio_busy_s = common::ToSeconds(BusiestAirtime());
     for (const auto& v : vehicles_) {
       // A vehicle the simulator lost or crashed is that, whatever its software says.
       const sim2d::FlightPhase phase = world().Truth(v->id()).phase;
@@ -293,7 +319,9 @@ class Lockstep {
   common::LocalFrame frame_;
   std::unique_ptr<server::Server> server_;
   std::vector<server::JournalEntry> journal_;  // kept for a restart only
-  radio::ChannelLoop radio_;                   // steps *server_ (its master) and the vehicles
+  // One loop per channel, each stepping *server_ (its master) and its vehicles.
+  std::vector<std::unique_ptr<radio::ChannelLoop>> radios_;
+  std::vector<radio::ChannelLoop*> loops_;
   std::vector<std::unique_ptr<agents::Vehicle>> vehicles_;
 };
 

@@ -145,7 +145,8 @@ RadioConfig ReadRadio(const Mapping& root) {
   RadioConfig out;
   const std::optional<Field> field = root.Find("radio");
   if (!field) return out;
-  const Mapping radio(*field, {"baud", "turnaround_ms", "loss", "checksum", "mode"});
+  const Mapping radio(*field, {"baud", "turnaround_ms", "loss", "checksum", "mode", "channels",
+                               "channel_overrides"});
   out.baud = radio.Integer("baud", out.baud, 1, internal::kMaxBaud);
   out.turnaround_ms =
       radio.Number("turnaround_ms", out.turnaround_ms, Range{0.0, internal::kMaxTurnaroundMs});
@@ -158,6 +159,7 @@ RadioConfig ReadRadio(const Mapping& root) {
     const auto names = RadioNames(kLinkModes);
     out.mode = radio::ParseLinkMode(names[mode->OneOf(names)]).value();
   }
+  internal::ReadChannels(radio, out);
   return out;
 }
 

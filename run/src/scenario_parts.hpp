@@ -48,6 +48,9 @@ inline constexpr double kUnbounded = std::numeric_limits<double>::infinity();
 inline constexpr Range kLatitudeRange{-90.0, 90.0};
 inline constexpr Range kLongitudeRange{-180.0, 180.0};
 
+/// Reads `channels` and `channel_overrides` of the `radio` mapping into `out`.
+void ReadChannels(const Mapping& radio, RadioConfig& out);
+
 /// `lat` and `lon` of `mapping`, both required, in range.
 common::LatLon ReadLatLon(const Mapping& mapping);
 

@@ -54,7 +54,7 @@ std::optional<sim2d::Vec2> FireHotCentre(const sim2d::FireGrid& grid,
 /// What the runner hands over at the end besides the world and the server.
 struct FinalState {
   double sim_seconds = 0.0;
-  double radio_busy_s = 0.0;           ///< channel airtime, overlaps once
+  double radio_busy_s = 0.0;           ///< channel airtime, overlaps once; the busiest channel's
   std::map<int, std::string> modes;    ///< receiver ID -> flight mode name
   std::uint64_t reports_queued = 0;    ///< fire reports the vehicles queued
   std::map<int, int> sorties_planned;  ///< receiver ID -> sorties in the plan

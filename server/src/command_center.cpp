@@ -178,6 +178,7 @@ void CommandCenter::OnMissionStatus(const mission_status_t& message) {
 
 void CommandCenter::OnRadioStats(const radio_stats_t& message) {
   UpdateTime(message.utime);
+  internal::RaiseChannelAlerts(radio_, message, time_s_, *alerts_);
   nlohmann::json radio = internal::RadioJson(message);
   if (radio != radio_) {
     radio_ = std::move(radio);

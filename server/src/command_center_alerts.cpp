@@ -1,6 +1,7 @@
 // Alerts from transitions between consecutive vehicle states and track lists.
 #include "command_center_alerts.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -91,6 +92,26 @@ void RaiseVehicleAlerts(const vehicle_state_t* previous, const vehicle_state_t& 
   if (now.task == vehicle_state_t::TASK_GIVEN_UP && task_before != vehicle_state_t::TASK_GIVEN_UP) {
     log.Add(time_s, AlertLevel::kWarning, "vehicle_given_up", id, 0,
             Drone(id) + ": given up, it does not answer");
+  }
+}
+
+void RaiseChannelAlerts(const nlohmann::json& previous_radio, const radio_stats_t& now,
+                        double time_s, AlertLog& log) {
+  const std::size_t channels = std::min(now.channel_silent.size(), now.channel_vehicles.size());
+  for (std::size_t k = 0; k < channels; ++k) {
+    bool was_silent = false;
+    if (previous_radio.is_object() && previous_radio.contains("channels") &&
+        k < previous_radio["channels"].size()) {
+      was_silent = previous_radio["channels"][k].value("silent", false);
+    }
+    const std::string name = "radio channel " + std::to_string(k);
+    if (now.channel_silent[k] && !was_silent) {
+      log.Add(time_s, AlertLevel::kCritical, "channel_silent", 0, 0,
+              name + ": silent, none of its " + std::to_string(now.channel_vehicles.at(k)) +
+                  " vehicles answers (modem or link down?)");
+    } else if (!now.channel_silent[k] && was_silent) {
+      log.Add(time_s, AlertLevel::kInfo, "channel_heard", 0, 0, name + ": heard again");
+    }
   }
 }
 

@@ -16,6 +16,7 @@
 
 #include "fireswarm/conflict_t.hpp"
 #include "fireswarm/fire_track_t.hpp"
+#include "fireswarm/radio_stats_t.hpp"
 #include "fireswarm/vehicle_state_t.hpp"
 
 namespace fireswarm::server::internal {
@@ -59,6 +60,13 @@ void RaiseVehicleAlerts(const vehicle_state_t* previous, const vehicle_state_t& 
 /// (status turned confirmed).
 void RaiseTrackAlerts(std::optional<int> previous_status, const fire_track_t& track, double time_s,
                       AlertLog& log);
+
+/// Alerts from the radio channels against the radio panel's previous JSON
+/// (RadioJson; null before the first message): channel_silent (a channel turned
+/// silent: every vehicle on it stopped answering, its modem or link is likely
+/// dead) and channel_heard (a silent channel answers again).
+void RaiseChannelAlerts(const nlohmann::json& previous_radio, const radio_stats_t& now,
+                        double time_s, AlertLog& log);
 
 /// Below this a drone is on the ground or taking off, metres above the launch ground.
 inline constexpr double kAirborneMinAltitudeM = 2.0;

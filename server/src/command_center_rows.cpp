@@ -230,6 +230,31 @@ nlohmann::json MissionJson(const mission_status_t& m) {
   };
 }
 
+namespace {
+
+// Each radio channel's row and each vehicle's channel (docs/command_center.md).
+nlohmann::json ChannelsJson(const radio_stats_t& m) {
+  nlohmann::json channels = nlohmann::json::array();
+  for (std::size_t k = 0; k < static_cast<std::size_t>(std::max<int>(m.channel_count, 0)); ++k) {
+    nlohmann::json vehicles = nlohmann::json::array();
+    for (std::size_t i = 0; i < std::min(m.vehicle_ids.size(), m.vehicle_channel.size()); ++i) {
+      if (static_cast<std::size_t>(m.vehicle_channel[i]) == k) vehicles.push_back(m.vehicle_ids[i]);
+    }
+    channels.push_back({{"channel", k},
+                        {"busy_fraction", Number(m.channel_busy_fraction.at(k))},
+                        {"payload_bytes_per_s", Number(m.channel_payload_bytes_per_s.at(k))},
+                        {"frames_sent", m.channel_frames_sent.at(k)},
+                        {"frames_received", m.channel_frames_received.at(k)},
+                        {"retries", m.channel_retries.at(k)},
+                        {"timeouts", m.channel_timeouts.at(k)},
+                        {"vehicles", std::move(vehicles)},
+                        {"silent", m.channel_silent.at(k) != 0}});
+  }
+  return channels;
+}
+
+}  // namespace
+
 nlohmann::json RadioJson(const radio_stats_t& m) {
   nlohmann::json ages = nlohmann::json::object();
   const std::size_t count = std::min(m.vehicle_ids.size(), m.telemetry_age_s.size());
@@ -245,6 +270,7 @@ nlohmann::json RadioJson(const radio_stats_t& m) {
   }
   return {
       {"window_s", Number(m.window_s)},
+      {"channels", ChannelsJson(m)},
       {"busy_fraction", Number(m.busy_fraction)},
       {"payload_bytes_per_s", Number(m.payload_bytes_per_s)},
       {"frames_sent", m.frames_sent},

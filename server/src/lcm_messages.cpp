@@ -135,24 +135,57 @@ mission_status_t ToMissionStatus(const Server& server, double now_s, std::int64_
   return m;
 }
 
+namespace {
+
+// One channel's fields of radio_stats_t over the window since `previous`.
+void AddChannelStats(const radio::ChannelRouter& router, std::size_t k, double window_s,
+                     const radio::SchedulerStats& previous_stats,
+                     const radio::ChannelBytes& previous_bytes, radio_stats_t& m) {
+  const radio::MasterScheduler& channel = router.channel(k);
+  const radio::SchedulerStats& stats = channel.stats();
+  const radio::ChannelBytes& bytes = router.bytes(k);
+  double busy = 0.0;
+  double payload = 0.0;
+  if (window_s > 0.0) {
+    payload = static_cast<double>(stats.payload_bytes - previous_stats.payload_bytes) / window_s;
+    // What the server hears plus what it sends: both occupy the channel.
+    // Turnarounds and idle slots are not counted, so this is a lower bound.
+    const double airtime_s = common::ToSeconds(channel.config().timing.AirtimeOf(
+        (bytes.sent - previous_bytes.sent) + (bytes.received - previous_bytes.received)));
+    busy = std::clamp(airtime_s / window_s, 0.0, 1.0);
+  }
+  m.channel_busy_fraction.push_back(busy);
+  m.channel_payload_bytes_per_s.push_back(payload);
+  m.channel_frames_sent.push_back(static_cast<std::int64_t>(
+      stats.polls + stats.schedules + stats.requests_sent + stats.report_acks_sent));
+  m.channel_frames_received.push_back(static_cast<std::int64_t>(channel.parser_stats().frames));
+  m.channel_retries.push_back(static_cast<std::int64_t>(stats.retries));
+  m.channel_timeouts.push_back(static_cast<std::int64_t>(stats.missed_replies));
+  m.channel_vehicles.push_back(static_cast<std::int16_t>(router.VehiclesOn(k).size()));
+  m.channel_silent.push_back(router.health(k).silent);
+}
+
+}  // namespace
+
 radio_stats_t ToRadioStats(const Server& server, double now_s, std::int64_t utime, double window_s,
                            RadioCounters& previous) {
-  const radio::SchedulerStats& stats = server.scheduler().stats();
-  const radio::ParserStats& parser = server.scheduler().parser_stats();
+  const radio::ChannelRouter& router = server.scheduler();
+  const radio::SchedulerStats stats = router.stats();
+  const radio::ParserStats parser = router.parser_stats();
   radio_stats_t m{};
   m.utime = utime;
   m.window_s = window_s;
-  if (window_s > 0.0) {
-    m.payload_bytes_per_s =
-        static_cast<double>(stats.payload_bytes - previous.stats.payload_bytes) / window_s;
-    // What the server hears plus what it sends: both occupy the one channel.
-    // Turnarounds and idle slots are not counted, so this is a lower bound.
-    const radio::LinkTiming& timing = server.scheduler().config().timing;
-    const double airtime_s =
-        common::ToSeconds(timing.AirtimeOf((server.bytes_sent() - previous.bytes_sent) +
-                                           (server.bytes_received() - previous.bytes_received)));
-    m.busy_fraction = std::clamp(airtime_s / window_s, 0.0, 1.0);
+  const std::size_t channels = router.channel_count();
+  previous.stats.resize(channels);
+  previous.bytes.resize(channels);
+  for (std::size_t k = 0; k < channels; ++k) {
+    AddChannelStats(router, k, window_s, previous.stats[k], previous.bytes[k], m);
+    previous.stats[k] = router.channel(k).stats();
+    previous.bytes[k] = router.bytes(k);
   }
+  m.channel_count = static_cast<std::int16_t>(channels);
+  m.busy_fraction = std::ranges::max(m.channel_busy_fraction);
+  for (const double rate : m.channel_payload_bytes_per_s) m.payload_bytes_per_s += rate;
   m.frames_sent = static_cast<std::int64_t>(stats.polls + stats.schedules + stats.requests_sent +
                                             stats.report_acks_sent);
   m.frames_received = static_cast<std::int64_t>(parser.frames);
@@ -169,12 +202,13 @@ radio_stats_t ToRadioStats(const Server& server, double now_s, std::int64_t utim
   m.commands_bad_mac = refused(CommandVerdict::kBadMac);
   m.commands_stale = refused(CommandVerdict::kStale);
   m.commands_replayed = refused(CommandVerdict::kReplayed);
-  const radio::FrameSecurity* security = server.scheduler().config().security.get();
+  const radio::FrameSecurity* security = router.config().security.get();
   m.secured = security != nullptr;
   m.out_of_turn = static_cast<std::int64_t>(stats.out_of_turn);
   for (const std::uint8_t id : server.registry().ids()) {
     m.vehicle_ids.push_back(id);
     m.telemetry_age_s.push_back(server.registry().TelemetryAgeS(id, now_s).value_or(-1.0));
+    m.vehicle_channel.push_back(static_cast<std::int16_t>(router.ChannelOf(id)));
     radio::KeySecurityStats key;
     if (security != nullptr) {
       if (const auto found = security->stats().find(id); found != security->stats().end()) {
@@ -185,7 +219,6 @@ radio_stats_t ToRadioStats(const Server& server, double now_s, std::int64_t utim
     m.replays.push_back(static_cast<std::int64_t>(key.replays));
   }
   m.vehicle_count = static_cast<std::int16_t>(m.vehicle_ids.size());
-  previous = RadioCounters{stats, server.bytes_sent(), server.bytes_received()};
   return m;
 }
 

@@ -28,7 +28,7 @@ const char* ToString(DronePhase phase) {
   return "unknown";
 }
 
-MissionManager::MissionManager(radio::MasterScheduler& scheduler,
+MissionManager::MissionManager(radio::ChannelRouter& scheduler,
                                std::vector<DroneMission> missions,
                                const MissionManagerConfig& config)
     : scheduler_(scheduler), config_(config) {

@@ -122,7 +122,7 @@ Server::Server(const ServerConfig& config, const common::LocalFrame& frame)
     : config_(Validated(config)),
       frame_(frame),
       transit_(TransitFor(config_)),
-      scheduler_(std::make_unique<radio::MasterScheduler>(config.radio)),
+      scheduler_(std::make_unique<radio::ChannelRouter>(config_.ChannelConfigs())),
       registry_(config.link),
       fusion_(config.fusion),
       investigations_(InvestigationsConfigOf(config_), frame_, transit_.get()),
@@ -135,8 +135,12 @@ void Server::AddVehicle(int receiver_id, double now_s) {
   registry_.Register(receiver_id);
   // Stagger the first telemetry turns so a fleet does not ask all at once.
   const auto index = static_cast<double>(registry_.size() - 1);
+  const auto fixed = config_.vehicle_channels.find(receiver_id);
   scheduler_->AddVehicle(static_cast<std::uint8_t>(receiver_id), config_.telemetry_hz,
-                         common::FromSeconds(index * 0.05));
+                         common::FromSeconds(index * 0.05),
+                         fixed == config_.vehicle_channels.end()
+                             ? std::nullopt
+                             : std::optional<std::size_t>(fixed->second));
   Record(now_s, VehicleAdded{receiver_id});
 }
 
@@ -155,10 +159,11 @@ void Server::LoadMission(std::vector<DroneMission> missions, double now_s,
   Record(now_s, std::move(loaded));
 }
 
-std::vector<radio::Burst> Server::Step(common::Nanos now, std::span<const std::uint8_t> received) {
+std::vector<radio::Burst> Server::Step(common::Nanos now, std::size_t channel,
+                                       std::span<const std::uint8_t> received) {
   const double now_s = common::ToSeconds(now);
   if (mission_) mission_->Step(now);
-  std::vector<radio::Burst> bursts = scheduler_->Step(now, received);
+  std::vector<radio::Burst> bursts = scheduler_->Step(now, channel, received);
   bytes_received_ += received.size();
   for (const radio::Burst& burst : bursts) bytes_sent_ += burst.bytes.size();
   for (const radio::SchedulerEvent& event : scheduler_->TakeEvents()) OnEvent(event, now_s);
@@ -169,12 +174,6 @@ std::vector<radio::Burst> Server::Step(common::Nanos now, std::span<const std::u
   ResolveConflicts(now_s);
   UpdateState(now_s);
   return bursts;
-}
-
-common::Nanos Server::NextWakeup() const {
-  common::Nanos next = scheduler_->NextWakeup();
-  if (mission_) next = std::min(next, mission_->NextWakeup());
-  return investigations_.NextVerdict(fusion_, next);
 }
 
 void Server::OnEvent(const radio::SchedulerEvent& event, double now_s) {

@@ -278,6 +278,40 @@ TEST_F(ServeCommand, ServerAndSimulatedFleetOnAPtyCompleteAMission) {
             << summary.at("tracks").size() << "\n";
 }
 
+// Two radio channels (issue 21): serve drives two modems, one pty cable each, and
+// each channel's fleet is its own `sim` process (vehicle 1 on the first link,
+// vehicle 2 on the second: serve's contiguous blocks).
+TEST_F(ServeCommand, ServerOnTwoChannelsAndTwoFleetsOnTwoPtysCompleteAMission) {
+  PtyCable first;
+  PtyCable second;
+  const auto sim_on = [&](const PtyCable& cable, int id) {
+    std::vector<std::string> args = SimArgs(cable.fleet_end());
+    args.at(2) = "1";  // --count
+    args.insert(args.end(), {"--first-id", std::to_string(id)});
+    return args;
+  };
+  FireswarmProcess sim_one(sim_on(first, 1));
+  FireswarmProcess sim_two(sim_on(second, 2));
+  std::vector<std::string> serve_args = ServeArgs(first.server_end());
+  serve_args.insert(serve_args.end(), {"--serial", second.server_end()});
+  FireswarmProcess serve(serve_args);
+  const RunResult run = serve.Finish(Clock::now() + kMissionDeadline);
+  ASSERT_EQ(run.exit_code, 0) << (run.lines.empty() ? "" : run.lines.back());
+  const Json summary = SummaryOf(run);
+  ExpectAllDone(summary);
+  EXPECT_EQ(summary.at("radio").value("requests_failed", 1), 0);
+  EXPECT_EQ(summary.at("radio").value("channels", 0), 2);
+  for (FireswarmProcess* sim : {&sim_one, &sim_two}) {
+    sim->Signal(SIGTERM);
+    const RunResult fleet = sim->Finish(Clock::now() + kExitDeadline);
+    EXPECT_EQ(fleet.exit_code, 0);
+    ASSERT_FALSE(fleet.lines.empty());
+    const Json figures = Json::parse(fleet.lines.back());
+    ASSERT_EQ(figures.at("vehicles").size(), 1U);
+    EXPECT_EQ(figures.at("vehicles").at(0).at("mode"), "landed");
+  }
+}
+
 TEST_F(ServeCommand, ServerKilledMidMissionResumesFromItsJournal) {
   PtyCable cable;
   const std::string journal = PathOf("mission.journal");

@@ -155,6 +155,16 @@ radio_stats_t Sample<radio_stats_t>() {
   m.out_of_turn = 80;
   m.auth_failures = {0, 3, 0};
   m.replays = {1, 0, 0};
+  m.vehicle_channel = {0, 1, 0};
+  m.channel_count = 2;
+  m.channel_busy_fraction = {0.71, 0.4};
+  m.channel_payload_bytes_per_s = {2'000.0, 1'120.5};
+  m.channel_frames_sent = {600'001, 400'000};
+  m.channel_frames_received = {599'000, 400'000};
+  m.channel_retries = {20, 3};
+  m.channel_timeouts = {9, 0};
+  m.channel_vehicles = {2, 1};
+  m.channel_silent = {false, true};
   return m;
 }
 

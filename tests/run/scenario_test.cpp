@@ -765,3 +765,47 @@ TEST(RepositoryScenarios, DocumentationFullExampleLoads) {
 
 }  // namespace
 }  // namespace fireswarm::run
+
+namespace fireswarm::run {
+namespace {
+
+using ::testing::AllOf;
+
+TEST(ParseScenario, RadioChannelsAndTheirOverrides) {
+  EXPECT_EQ(Parse(Minimal()).radio.channels, 1);
+  const Scenario s = Parse(Minimal(
+      "radio:\n  loss: 0.1\n  channels: 4\n  channel_overrides:\n"
+      "    - {channel: 2, baud: 19200, loss: 0.3, vehicles: [1]}\n"
+      "    - {channel: 3, turnaround_ms: 8}\n"));
+  EXPECT_EQ(s.radio.channels, 4);
+  ASSERT_EQ(s.radio.channel_overrides.size(), 2U);
+  EXPECT_EQ(s.radio.channel_overrides[0].vehicles, std::vector<int>{1});
+  EXPECT_EQ(s.radio.ChannelAt(0).baud, 57'600);
+  EXPECT_DOUBLE_EQ(s.radio.ChannelAt(0).loss, 0.1);
+  EXPECT_EQ(s.radio.ChannelAt(2).baud, 19'200);
+  EXPECT_DOUBLE_EQ(s.radio.ChannelAt(2).loss, 0.3);
+  EXPECT_DOUBLE_EQ(s.radio.ChannelAt(3).turnaround_ms, 8.0);
+  EXPECT_DOUBLE_EQ(s.radio.ChannelAt(3).loss, 0.1);
+}
+
+TEST(ParseScenario, BadRadioChannelsNameTheFileLineAndKey) {
+  EXPECT_THAT(ErrorOf(Minimal("radio: {channels: 17}\n")),
+              AllOf(StartsWith("test.yaml:"), HasSubstr("radio.channels")));
+  EXPECT_THAT(ErrorOf(Minimal("radio: {channels: 0}\n")), HasSubstr("radio.channels"));
+  EXPECT_THAT(ErrorOf(Minimal("radio:\n  channels: 2\n  channel_overrides:\n    - {channel: 2}\n")),
+              AllOf(StartsWith("test.yaml:"), HasSubstr("radio.channel_overrides[0].channel")));
+  EXPECT_THAT(
+      ErrorOf(Minimal("radio:\n  channels: 2\n  channel_overrides:\n    - {channel: 1}\n"
+                      "    - {channel: 1, loss: 0.2}\n")),
+      HasSubstr("channel 1 is overridden twice"));
+  EXPECT_THAT(ErrorOf(Minimal("radio:\n  channels: 2\n  channel_overrides:\n"
+                              "    - {channel: 0, vehicles: [1]}\n"
+                              "    - {channel: 1, vehicles: [1]}\n")),
+              HasSubstr("vehicle 1 is fixed on two channels"));
+  EXPECT_THAT(ErrorOf(Minimal("radio:\n  channels: 2\n  channel_overrides:\n"
+                              "    - {channel: 1, los: 0.2}\n")),
+              HasSubstr("did you mean 'loss'?"));
+}
+
+}  // namespace
+}  // namespace fireswarm::run

@@ -155,5 +155,46 @@ TEST(CommandCenterAlerts, AlertsAreBoundedNewestKept) {
   EXPECT_EQ((*delta)["alerts"].size(), 3U) << "a delta carries only the alerts still kept";
 }
 
+// Two radio channels, the second turning silent then heard again (issue 21).
+radio_stats_t TwoChannels(std::int64_t utime, bool second_silent) {
+  radio_stats_t m{};
+  m.utime = utime;
+  m.vehicle_ids = {1, 2};
+  m.telemetry_age_s = {0.5, 12.0};
+  m.vehicle_count = 2;
+  m.auth_failures = {0, 0};
+  m.replays = {0, 0};
+  m.vehicle_channel = {0, 1};
+  m.channel_count = 2;
+  m.channel_busy_fraction = {0.5, 0.2};
+  m.channel_payload_bytes_per_s = {900.0, 0.0};
+  m.channel_frames_sent = {100, 80};
+  m.channel_frames_received = {90, 10};
+  m.channel_retries = {0, 4};
+  m.channel_timeouts = {0, 30};
+  m.channel_vehicles = {1, 1};
+  m.channel_silent = {false, second_silent};
+  return m;
+}
+
+TEST(CommandCenterAlerts, AChannelTurningSilentAndHeardAgain) {
+  CommandCenter center({});
+  center.OnRadioStats(TwoChannels(1'000'000, false));
+  center.OnRadioStats(TwoChannels(3'000'000, true));
+  center.OnRadioStats(TwoChannels(5'000'000, true));  // still silent: nothing new
+  center.OnRadioStats(TwoChannels(7'000'000, false));
+  EXPECT_THAT(Kinds(center), ElementsAre("channel_silent", "channel_heard"));
+  const nlohmann::json state = center.State();
+  EXPECT_EQ(state["alerts"][0]["level"], "critical");
+  EXPECT_DOUBLE_EQ(state["alerts"][0]["time_s"].get<double>(), 3.0);
+  EXPECT_EQ(state["alerts"][0]["text"],
+            "radio channel 1: silent, none of its 1 vehicles answers (modem or link down?)");
+  const nlohmann::json& channels = state["radio"]["channels"];
+  ASSERT_EQ(channels.size(), 2U);
+  EXPECT_EQ(channels[1]["vehicles"], nlohmann::json::array({2}));
+  EXPECT_EQ(channels[1]["retries"], 4);
+  EXPECT_EQ(channels[0]["silent"], false);
+}
+
 }  // namespace
 }  // namespace fireswarm::server

@@ -22,16 +22,16 @@ struct ManagedScheduler {
   explicit ManagedScheduler(radio::LinkMode mode) {
     radio::SchedulerConfig config;
     config.mode = mode;
-    scheduler = std::make_unique<radio::MasterScheduler>(config);
+    scheduler = std::make_unique<radio::ChannelRouter>(std::vector{config});
   }
   std::vector<radio::Burst> Step(Nanos now, std::span<const std::uint8_t> bytes) {
     manager->Step(now);
-    std::vector<radio::Burst> bursts = scheduler->Step(now, bytes);
+    std::vector<radio::Burst> bursts = scheduler->Step(now, 0, bytes);
     for (const radio::SchedulerEvent& event : scheduler->TakeEvents()) manager->OnEvent(event);
     return bursts;
   }
   Nanos NextWakeup() const { return std::min(scheduler->NextWakeup(), manager->NextWakeup()); }
-  std::unique_ptr<radio::MasterScheduler> scheduler;
+  std::unique_ptr<radio::ChannelRouter> scheduler;
   std::unique_ptr<MissionManager> manager;
 };
 
@@ -131,7 +131,7 @@ TEST(MissionManager, GivesUpOnASilentVehicleAndSaysWhy) {
 }
 
 TEST(MissionManager, RefusesTwoMissionsForOneVehicle) {
-  radio::MasterScheduler scheduler(radio::SchedulerConfig{});
+  radio::ChannelRouter scheduler({radio::SchedulerConfig{}});
   scheduler.AddVehicle(1, 1.0);
   EXPECT_THROW(MissionManager(scheduler, {Mission(1, 5), Mission(1, 6)}), std::invalid_argument);
 }
@@ -338,7 +338,7 @@ TEST(MissionManager, AMissionHandedToADroneBetweenSortiesWaitsForItsPack) {
 }
 
 TEST(MissionManager, RestoresADroneBetweenSortiesWithoutUploadingAgain) {
-  radio::MasterScheduler scheduler(radio::SchedulerConfig{});
+  radio::ChannelRouter scheduler({radio::SchedulerConfig{}});
   scheduler.AddVehicle(1, 1.0);
   MissionManager manager(scheduler, {ThreeSorties(1)});
   manager.RestorePhase(1, DronePhase::kSwapping, 1, std::vector<std::size_t>{4, 6, 8});

@@ -104,7 +104,7 @@ radio::FireReport SampleReport(std::uint8_t id, Nanos now) {
   return r;
 }
 
-void QueueMission(radio::MasterScheduler& server, BenchVehicle& vehicle, int waypoints) {
+void QueueMission(radio::ChannelRouter& server, BenchVehicle& vehicle, int waypoints) {
   const std::uint8_t id = vehicle.endpoint.config().id;
   std::vector<radio::Waypoint> mission(static_cast<std::size_t>(waypoints));
   for (std::size_t i = 0; i < mission.size(); ++i) {
@@ -146,12 +146,21 @@ void Record(const radio::SchedulerEvent& event, Nanos generation_end, Fleet& fle
 }
 
 RadioBenchResult Figures(const RadioBenchConfig& config, const Snapshot& snapshot,
-                         const Metrics& metrics, const radio::MasterScheduler& server,
-                         const radio::SharedChannel& channel, const Fleet& fleet, Nanos end) {
+                         const Metrics& metrics, const radio::ChannelRouter& server,
+                         std::span<const radio::SharedChannel* const> channels, const Fleet& fleet,
+                         Nanos end) {
   RadioBenchResult r;
   const double window_s = config.seconds;
   r.sim_seconds = common::ToSeconds(end);
-  r.busy_fraction = common::ToSeconds(snapshot.busy) / window_s;
+  for (std::size_t k = 0; k < channels.size(); ++k) {
+    ChannelFigures c;
+    c.vehicles = static_cast<int>(server.VehiclesOn(k).size());
+    c.busy_fraction = common::ToSeconds(snapshot.busy.at(k)) / window_s;
+    r.busy_fraction = std::max(r.busy_fraction, c.busy_fraction);
+    r.transmissions += channels[k]->stats().transmissions;
+    r.collisions += channels[k]->stats().collisions;
+    r.per_channel.push_back(c);
+  }
   r.payload_bytes_per_s = static_cast<double>(snapshot.payload_bytes) / window_s;
   double rate_sum = 0.0;
   r.telemetry_hz_min = std::numeric_limits<double>::infinity();
@@ -177,10 +186,8 @@ RadioBenchResult Figures(const RadioBenchConfig& config, const Snapshot& snapsho
   r.reports_sent = metrics.reports_sent;
   r.reports_received = metrics.reports_received;
   r.reports_lost = metrics.reports_sent - metrics.reports_received;
-  const radio::SchedulerStats& s = server.stats();
+  const radio::SchedulerStats s = server.stats();
   r.duplicate_reports = s.duplicate_reports;
-  r.transmissions = channel.stats().transmissions;
-  r.collisions = channel.stats().collisions;
   r.retries = s.retries;
   r.missed_replies = s.missed_replies;
   r.bursts = s.bursts;

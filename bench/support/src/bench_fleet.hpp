@@ -5,11 +5,13 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "fireswarm/bench/radio_bench.hpp"
 #include "fireswarm/common/time.hpp"
 #include "fireswarm/radio/channel.hpp"
+#include "fireswarm/radio/channel_router.hpp"
 #include "fireswarm/radio/master_scheduler.hpp"
 #include "fireswarm/radio/vehicle_endpoint.hpp"
 
@@ -53,7 +55,7 @@ struct Metrics {
 
 /// Channel figures at the end of the generation window.
 struct Snapshot {
-  common::Nanos busy{0};
+  std::vector<common::Nanos> busy;  ///< per channel
   std::uint64_t payload_bytes = 0;
 };
 
@@ -63,14 +65,14 @@ radio::Telemetry SampleTelemetry(std::uint8_t id, common::Nanos now);
 radio::FireReport SampleReport(std::uint8_t id, common::Nanos now);
 /// Queues a `waypoints`-waypoint mission (1..kMaxMissionWaypoints) for `vehicle` in
 /// chunks; sets chunks_left.
-void QueueMission(radio::MasterScheduler& server, BenchVehicle& vehicle, int waypoints);
+void QueueMission(radio::ChannelRouter& server, BenchVehicle& vehicle, int waypoints);
 /// Applies one scheduler event to the bookkeeping.
 void Record(const radio::SchedulerEvent& event, common::Nanos generation_end, Fleet& fleet,
             Metrics& metrics);
 /// The figures of a finished run that ended at `end`.
 RadioBenchResult Figures(const RadioBenchConfig& config, const Snapshot& snapshot,
-                         const Metrics& metrics, const radio::MasterScheduler& server,
-                         const radio::SharedChannel& channel, const Fleet& fleet,
+                         const Metrics& metrics, const radio::ChannelRouter& server,
+                         std::span<const radio::SharedChannel* const> channels, const Fleet& fleet,
                          common::Nanos end);
 
 }  // namespace fireswarm::bench::internal

@@ -4,6 +4,7 @@
 #include "fireswarm/bench/radio_bench.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <memory>
 #include <random>
@@ -18,6 +19,7 @@
 #include "fireswarm/common/time.hpp"
 #include "fireswarm/radio/channel.hpp"
 #include "fireswarm/radio/channel_loop.hpp"
+#include "fireswarm/radio/channel_router.hpp"
 #include "fireswarm/radio/master_scheduler.hpp"
 #include "fireswarm/radio/mission_chunks.hpp"
 #include "fireswarm/radio/simulation_keys.hpp"
@@ -54,22 +56,30 @@ class Bench {
       : config_(config),
         generation_end_(common::FromSeconds(config.seconds)),
         hard_end_(generation_end_ + common::FromSeconds(config.drain_seconds)),
-        server_(SchedulerConfigFor(config)),
-        loop_(ChannelConfigFor(config), config.seed,
-              radio::LoopMaster{[this] { return server_.NextWakeup(); },
-                                [this](Nanos now, std::span<const std::uint8_t> received) {
-                                  return StepServer(now, received);
-                                }}),
-        report_rng_(config.seed ^ kReportSeedSalt) {
+        server_(std::vector<radio::SchedulerConfig>(static_cast<std::size_t>(config.channels),
+                                                    SchedulerConfigFor(config))),
+        report_rng_(config.seed ^ kReportSeedSalt),
+        step_s_(static_cast<std::size_t>(config.channels), 0.0) {
+    for (std::size_t k = 0; k < server_.channel_count(); ++k) {
+      // Separate frequencies: each channel its own generator (channel 0's as before).
+      loops_.push_back(std::make_unique<radio::ChannelLoop>(
+          ChannelConfigFor(config), config.seed + k,
+          radio::LoopMaster{[this, k] { return server_.NextWakeup(k); },
+                            [this, k](Nanos now, std::span<const std::uint8_t> received) {
+                              return StepServer(k, now, received);
+                            }}));
+    }
     const Nanos period = common::FromSeconds(1.0 / config.telemetry_hz);
     for (int i = 0; i < config.vehicles; ++i) {
       const auto id = static_cast<std::uint8_t>(i + 1);
       fleet_.push_back(std::make_unique<BenchVehicle>(EndpointConfigFor(config, id)));
-      loop_.AddVehicle([&v = *fleet_.back()](Nanos now, std::span<const std::uint8_t> received) {
-        return StepVehicle(v, now, received);
-      });
       // Staggered first turns spread the telemetry load over the period.
-      server_.AddVehicle(id, config.telemetry_hz, period * i / config.vehicles);
+      const std::size_t channel =
+          server_.AddVehicle(id, config.telemetry_hz, period * i / config.vehicles);
+      loops_[channel]->AddVehicle(
+          [&v = *fleet_.back()](Nanos now, std::span<const std::uint8_t> received) {
+            return StepVehicle(v, now, received);
+          });
       fleet_.back()->next_report =
           generation_end_ > Nanos{0} ? NextArrival(Nanos{0}) : Nanos::max();
     }
@@ -81,18 +91,27 @@ class Bench {
     }
   }
 
-  void ObserveAir(const AirObserver& observer) { loop_.channel().SetAirObserver(observer); }
+  void ObserveAir(const AirObserver& observer) {
+    for (auto& loop : loops_) loop->channel().SetAirObserver(observer);
+  }
 
   RadioBenchResult Run() {
     Nanos t{0};
     while (!Finished(t)) {
       t = NextEventTime();
-      loop_.StepAt(t);
+      for (auto& loop : loops_) loop->StepAt(t);
       GenerateReports(t);
       if (t == next_sample_) SampleAges(t);
     }
     if (!snapshot_) SnapshotGenerationEnd();
-    return internal::Figures(config_, *snapshot_, metrics_, server_, loop_.channel(), fleet_, t);
+    std::vector<const radio::SharedChannel*> channels;
+    for (const auto& loop : loops_) channels.push_back(&loop->channel());
+    RadioBenchResult result =
+        internal::Figures(config_, *snapshot_, metrics_, server_, channels, fleet_, t);
+    for (std::size_t k = 0; k < result.per_channel.size(); ++k) {
+      result.per_channel[k].server_step_s = step_s_[k];
+    }
+    return result;
   }
 
  private:
@@ -149,7 +168,8 @@ class Bench {
   }
 
   Nanos NextEventTime() const {
-    Nanos next = loop_.NextEventTime();
+    Nanos next = Nanos::max();
+    for (const auto& loop : loops_) next = std::min(next, loop->NextEventTime());
     for (const auto& v : fleet_) next = std::min(next, v->next_report);
     if (!snapshot_) next = std::min(next, generation_end_);
     if (next_sample_ <= generation_end_) next = std::min(next, next_sample_);
@@ -159,10 +179,13 @@ class Bench {
   // The loop's master step, the first thing at every event time once the channel
   // has advanced: the generation-end snapshot is taken here, before anyone hears
   // what ended at that instant.
-  std::vector<radio::Burst> StepServer(Nanos t, std::span<const std::uint8_t> received) {
+  std::vector<radio::Burst> StepServer(std::size_t channel, Nanos t,
+                                       std::span<const std::uint8_t> received) {
     if (t == generation_end_) SnapshotGenerationEnd();
-    if (received.empty() && t < server_.NextWakeup()) return {};
-    std::vector<radio::Burst> bursts = server_.Step(t, received);
+    if (received.empty() && t < server_.NextWakeup(channel)) return {};
+    const auto started = std::chrono::steady_clock::now();
+    std::vector<radio::Burst> bursts = server_.Step(t, channel, received);
+    step_s_[channel] += std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     for (const radio::SchedulerEvent& event : server_.TakeEvents()) {
       internal::Record(event, generation_end_, fleet_, metrics_);
     }
@@ -198,7 +221,7 @@ class Bench {
 
   void SnapshotGenerationEnd() {
     internal::Snapshot s;
-    s.busy = loop_.channel().stats().busy;
+    for (const auto& loop : loops_) s.busy.push_back(loop->channel().stats().busy);
     s.payload_bytes = server_.stats().payload_bytes;
     for (const auto& v : fleet_) s.payload_bytes += v->endpoint.stats().payload_bytes_for_me;
     snapshot_ = s;
@@ -207,9 +230,10 @@ class Bench {
   RadioBenchConfig config_;
   Nanos generation_end_;
   Nanos hard_end_;
-  radio::MasterScheduler server_;
-  radio::ChannelLoop loop_;  // after server_, which its master step uses
+  radio::ChannelRouter server_;
+  std::vector<std::unique_ptr<radio::ChannelLoop>> loops_;  // their master steps use server_
   std::mt19937_64 report_rng_;
+  std::vector<double> step_s_;  // per channel: wall time in server_.Step, s
   std::vector<std::unique_ptr<BenchVehicle>> fleet_;
   internal::Metrics metrics_;
   std::optional<internal::Snapshot> snapshot_;
@@ -220,6 +244,9 @@ class Bench {
 
 void RadioBenchConfig::Validate() const {
   if (vehicles < 1 || vehicles > kMaxVehicles) ThrowConfig("vehicles", "in 1..254", vehicles);
+  if (channels < 1 || std::cmp_greater(channels, radio::kMaxChannels)) {
+    ThrowConfig("channels", "in 1.." + std::to_string(radio::kMaxChannels), channels);
+  }
   // Upper limits bound the simulated work (docs/limits.md).
   if (!(seconds > 0.0 && seconds <= kMaxBenchSeconds)) {
     ThrowConfig("seconds", "in (0, 86400]", seconds);

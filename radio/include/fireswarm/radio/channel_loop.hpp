@@ -103,4 +103,11 @@ class ChannelLoop {
   int steps_at_last_instant_ = 0;
 };
 
+/// Several loops on separate frequencies (ChannelRouter's channels) whose masters
+/// share one core: runs every loop's event times up to and including `end` in
+/// time order (the earliest first, the lower index on ties), so the shared core
+/// never sees time go back, then advances every channel to `end`. Throws as
+/// ChannelLoop::StepAt().
+void RunLoopsUntil(std::span<ChannelLoop* const> loops, Nanos end);
+
 }  // namespace fireswarm::radio

@@ -77,7 +77,9 @@ struct Collision {
 };
 
 struct RadioOutcome {
-  double busy_fraction = 0.0;  ///< share of the run the channel carried a transmission
+  /// Share of the run the channel carried a transmission (with several channels:
+  /// the busiest one).
+  double busy_fraction = 0.0;
   /// Per receiver ID: telemetry age (time since the latest telemetry, sampled every
   /// second while the vehicle flew) p50 and p99, s.
   std::map<int, std::pair<double, double>> telemetry_age_p50_p99_s;

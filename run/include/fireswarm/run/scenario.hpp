@@ -122,6 +122,21 @@ struct RadioConfig {
   /// (radio/simulation_keys.hpp); xor and crc16 as on the seed's board.
   radio::ChecksumMode checksum = radio::ChecksumMode::kSecure;
   radio::LinkMode mode = radio::LinkMode::kSlots;
+  /// Radio channels (separate frequencies, one modem each at the server), 1..16.
+  int channels = 1;
+  /// One channel unlike the others: `channel` (0-based) with its own baud,
+  /// turnaround or loss (unset: the radio's), and the vehicles fixed on it (the
+  /// others are spread over the channels in balanced groups by the server).
+  struct ChannelOverride {
+    int channel = 0;
+    std::optional<int> baud;
+    std::optional<double> turnaround_ms;
+    std::optional<double> loss;
+    std::vector<int> vehicles;  ///< receiver IDs
+  };
+  std::vector<ChannelOverride> channel_overrides;
+  /// Channel `channel`'s baud, turnaround and loss with its override applied.
+  RadioConfig ChannelAt(int channel) const;
 };
 
 /// A fire that starts at a given place and time.

@@ -86,13 +86,14 @@ mission_status_t ToMissionStatus(const Server& server, double now_s, std::int64_
 plan_t ToPlan(const Server& server, std::int64_t utime);
 /// The counters a radio_stats_t window is the difference of.
 struct RadioCounters {
-  radio::SchedulerStats stats;
-  std::uint64_t bytes_sent = 0;
-  std::uint64_t bytes_received = 0;
+  std::vector<radio::SchedulerStats> stats;  ///< per channel
+  std::vector<radio::ChannelBytes> bytes;    ///< per channel
 };
 /// Counters since the start; busy fraction (airtime of the bytes the server sent
 /// and received: a lower bound, turnarounds not counted) and payload rate over the
 /// last `window_s`, from the difference with `previous`, which is then updated.
+/// The fleet's fields add every channel up (busy_fraction: the busiest channel's);
+/// the channel_* arrays are each channel's.
 radio_stats_t ToRadioStats(const Server& server, double now_s, std::int64_t utime, double window_s,
                            RadioCounters& previous);
 /// One command's record (Server::commands()) stamped `utime`; its issue time

@@ -32,6 +32,7 @@
 #include "fireswarm/common/local_frame.hpp"
 #include "fireswarm/common/time.hpp"
 #include "fireswarm/planner/plan.hpp"
+#include "fireswarm/radio/channel_router.hpp"
 #include "fireswarm/radio/master_scheduler.hpp"
 #include "fireswarm/radio/messages.hpp"
 
@@ -130,7 +131,7 @@ class MissionManager {
  public:
   /// `scheduler` must outlive the manager and know every drone's vehicle.
   /// Throws std::invalid_argument for a vehicle listed twice.
-  MissionManager(radio::MasterScheduler& scheduler, std::vector<DroneMission> missions,
+  MissionManager(radio::ChannelRouter& scheduler, std::vector<DroneMission> missions,
                  const MissionManagerConfig& config = {});
 
   /// Queues every uploading drone's chunks; each drone's start follows its last
@@ -243,7 +244,7 @@ class MissionManager {
   void OnTelemetry(const radio::TelemetryReceived& telemetry);
   void Fail(Drone& drone, std::string why);
 
-  radio::MasterScheduler& scheduler_;
+  radio::ChannelRouter& scheduler_;
   MissionManagerConfig config_;
   std::map<std::uint8_t, Drone> drones_;
   struct Pending {

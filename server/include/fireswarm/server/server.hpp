@@ -61,6 +61,7 @@
 #include "fireswarm/planner/coverage_grid.hpp"
 #include "fireswarm/planner/geometry.hpp"
 #include "fireswarm/planner/transit.hpp"
+#include "fireswarm/radio/channel_router.hpp"
 #include "fireswarm/radio/master_scheduler.hpp"
 #include "fireswarm/server/airspace.hpp"
 #include "fireswarm/server/command_auth.hpp"
@@ -78,7 +79,18 @@
 namespace fireswarm::server {
 
 struct ServerConfig {
+  /// The radio master's configuration; with several channels, every channel's but
+  /// for its timing (below).
   radio::SchedulerConfig radio;
+  /// Several radio channels (issue 21): one LinkTiming per channel (its modem's
+  /// baud and turnaround), channel k is channels[k]. Empty: one channel with
+  /// radio.timing.
+  std::vector<radio::LinkTiming> channels;
+  /// Receiver ID -> channel for vehicles whose channel is fixed; the others are
+  /// spread over the channels in balanced groups, in the order they are added.
+  std::map<int, std::size_t> vehicle_channels;
+  /// One scheduler configuration per channel (radio with each channel's timing).
+  std::vector<radio::SchedulerConfig> ChannelConfigs() const;
   double telemetry_hz = 1.0;  ///< per vehicle
   LinkThresholds link;
   FireFusionConfig fusion;
@@ -180,10 +192,16 @@ class Server {
   /// kMalformed, and why are in `refusal`), as HandleSigned does its refusals.
   void Refuse(CommandRefused refusal, common::Nanos now);
 
-  /// Feeds the bytes received up to `now` and returns what to transmit.
+  /// Feeds the bytes radio channel `channel` received up to `now` and returns
+  /// what to transmit on it (ServerConfig::channels; 0..channel_count()-1).
+  std::vector<radio::Burst> Step(common::Nanos now, std::size_t channel,
+                                 std::span<const std::uint8_t> received);
+  /// Step on channel 0: the single-channel server's (and ChannelLoop's) call.
   std::vector<radio::Burst> Step(common::Nanos now, std::span<const std::uint8_t> received);
-  /// When Step() must next be called without new bytes.
+  /// When Step() must next be called without new bytes, on any channel.
   common::Nanos NextWakeup() const;
+  /// When Step() must next be called on `channel` without new bytes.
+  common::Nanos NextWakeup(std::size_t channel) const;
 
   /// Journal entries produced since the last call, in order.
   std::vector<JournalEntry> TakeJournalEntries();
@@ -202,7 +220,8 @@ class Server {
   const VehicleRegistry& registry() const { return registry_; }
   const FireFusion& fusion() const { return fusion_; }
   const MissionManager* mission() const { return mission_ ? &*mission_ : nullptr; }
-  const radio::MasterScheduler& scheduler() const { return *scheduler_; }
+  /// The radio master: one scheduler per channel, requests routed by vehicle.
+  const radio::ChannelRouter& scheduler() const { return *scheduler_; }
   const std::vector<Investigation>& investigations() const { return investigations_.all(); }
   const common::LocalFrame& frame() const { return frame_; }
   const ServerConfig& config() const { return config_; }
@@ -277,7 +296,7 @@ class Server {
   ServerConfig config_;
   common::LocalFrame frame_;
   std::unique_ptr<const planner::TransitPlanner> transit_;  // null without no-fly zones
-  std::unique_ptr<radio::MasterScheduler> scheduler_;
+  std::unique_ptr<radio::ChannelRouter> scheduler_;
   VehicleRegistry registry_;
   FireFusion fusion_;
   Investigations investigations_;  // holds transit_.get(): declared after it

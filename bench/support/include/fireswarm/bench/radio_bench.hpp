@@ -30,6 +30,9 @@ struct RadioBenchConfig {
   double reports_per_minute = 2.0;  ///< fire reports per vehicle per minute (Poisson)
   double telemetry_hz = 1.0;        ///< per vehicle
   int mission_waypoints = 0;        ///< uploaded to every vehicle at t = 0; 0 = none
+  /// Radio channels (separate frequencies, one server modem each; issue 21),
+  /// 1..16; the vehicles are spread over them in balanced groups.
+  int channels = 1;
   std::uint64_t seed = 1;
   /// Throws std::invalid_argument naming the field when a value is out of range.
   void Validate() const;
@@ -45,11 +48,20 @@ struct VehicleLinkFigures {
   std::uint64_t reports_sent = 0;  ///< fire reports it generated
 };
 
+/// One channel's figures.
+struct ChannelFigures {
+  int vehicles = 0;
+  double busy_fraction = 0.0;  ///< time the channel carried a transmission / seconds
+  /// Wall time the server's scheduler spent stepping this channel (a CPU measure:
+  /// the bench is single-threaded), s; not deterministic.
+  double server_step_s = 0.0;
+};
+
 /// Figures of one run. Rates and fractions cover [0, seconds]; latencies, losses and
 /// counters the whole run, drain included.
 struct RadioBenchResult {
   double sim_seconds = 0.0;          ///< simulated time at the end, drain included
-  double busy_fraction = 0.0;        ///< time the channel carried a transmission / seconds
+  double busy_fraction = 0.0;        ///< the busiest channel's: time it carried a transmission / seconds
   double payload_bytes_per_s = 0.0;  ///< data bytes of frames received by their addressee
   double telemetry_hz_min = 0.0;     ///< telemetry frames received per vehicle / seconds
   double telemetry_hz_mean = 0.0;
@@ -76,6 +88,7 @@ struct RadioBenchResult {
   /// mission or when an upload failed.
   std::optional<double> mission_upload_s;
   std::vector<VehicleLinkFigures> per_vehicle;  ///< by receiver ID
+  std::vector<ChannelFigures> per_channel;      ///< by channel
 };
 
 /// Called once per transmission as the channel resolves it (a capture of the air).
