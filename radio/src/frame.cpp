@@ -1,11 +1,11 @@
 // APOne frame encoding and checksums (seed Table 5.3, seed 5.3.4.5).
 #include "fireswarm/radio/frame.hpp"
 
-#include <boost/crc.hpp>
 #include <stdexcept>
 #include <string>
 
 #include "byte_io.hpp"
+#include "range_checksum.hpp"
 
 namespace fireswarm::radio {
 
@@ -35,9 +35,8 @@ std::uint8_t Xor8(std::span<const std::uint8_t> bytes) {
 }
 
 std::uint16_t Crc16(std::span<const std::uint8_t> bytes) {
-  // CRC-16/CCITT-FALSE: width 16, polynomial 0x1021, init 0xFFFF, no final XOR, no
-  // reflection. Boost's table-driven implementation processes a byte per step.
-  boost::crc_optimal<16, 0x1021, 0xFFFF, 0, false, false> crc;
+  // Boost's table-driven implementation processes a byte per step.
+  detail::Crc16Register crc;
   crc.process_bytes(bytes.data(), bytes.size());
   return crc.checksum();
 }
