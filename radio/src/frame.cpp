@@ -35,10 +35,9 @@ std::uint8_t Xor8(std::span<const std::uint8_t> bytes) {
 }
 
 std::uint16_t Crc16(std::span<const std::uint8_t> bytes) {
-  // Boost's table-driven implementation processes a byte per step.
-  detail::Crc16Register crc;
-  crc.process_bytes(bytes.data(), bytes.size());
-  return crc.checksum();
+  std::uint16_t crc = detail::kCrc16Initial;
+  for (const std::uint8_t byte : bytes) crc = detail::Crc16Step(crc, byte);
+  return crc;
 }
 
 void AppendFrame(std::vector<std::uint8_t>& out, std::uint8_t receiver, std::uint8_t message_id,

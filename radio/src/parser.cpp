@@ -127,7 +127,10 @@ std::optional<FrameView> FrameParser::Scan(bool end_of_stream) {
     begin_ = position;
   };
   while (begin_ < end_) {
-    const void* hit = std::memchr(buffer + begin_, kPreamble[0], end_ - begin_);
+    // Hostile streams put a candidate right where the last one's search stopped.
+    const void* hit = buffer[begin_] == kPreamble[0]
+                          ? buffer + begin_
+                          : std::memchr(buffer + begin_, kPreamble[0], end_ - begin_);
     if (hit == nullptr) {
       skip_to(end_);
       break;
@@ -196,7 +199,15 @@ std::optional<FrameView> FrameParser::Scan(bool end_of_stream) {
     } else {
       ++stats_.checksum_errors;
     }
-    skip_to(start + 1);
+    // The search has shown that no preamble starts before the one it found (or, when
+    // it found none, inside the candidate), so the rescan resumes there directly.
+    if (inner.match == PreambleMatch::kYes) {
+      skip_to(static_cast<std::size_t>(inner.at - buffer));
+    } else if (inner.match == PreambleMatch::kNo) {
+      skip_to(start + frame_size);
+    } else {
+      skip_to(start + 1);
+    }
   }
   return std::nullopt;
 }

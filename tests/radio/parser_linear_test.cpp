@@ -34,8 +34,10 @@ Bytes Repeat(const Bytes& unit) {
 // The worst streams we know of for a parser that rescans candidates.
 std::vector<std::pair<std::string, Bytes>> AdversarialStreams() {
   std::vector<std::pair<std::string, Bytes>> streams;
-  // The finding: a preamble every 4 bytes whose length byte (the next
-  // preamble's first byte... here 0xFF) promises the longest frame.
+  // A candidate every 3 bytes, its length byte the preamble's 0xAC.
+  streams.emplace_back("preamble_every_3", Repeat({0x70, 0x96, 0xAC}));
+  // The finding: a preamble every 4 bytes whose length byte (here the
+  // next unit's 0x96) promises the longest frame.
   streams.emplace_back("preamble_ff", Repeat({0x70, 0x96, 0xAC, 0xFF}));
   // Full headers with the longest length: receiver, message ID, length 255.
   streams.emplace_back("header_255", Repeat({0x70, 0x96, 0xAC, 0x01, 0x10, 0xFF}));
