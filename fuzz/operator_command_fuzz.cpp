@@ -35,8 +35,8 @@ bool SameBits(double a, double b) {
 }
 
 bool SameCommand(const server::OperatorCommand& a, const server::OperatorCommand& b) {
-  return a.kind == b.kind && a.vehicle == b.vehicle && SameBits(a.point.lat, b.point.lat) &&
-         SameBits(a.point.lon, b.point.lon) && SameBits(a.radius_m, b.radius_m) &&
+  return a.kind == b.kind && a.vehicle == b.vehicle && SameBits(a.point.lat_deg, b.point.lat_deg) &&
+         SameBits(a.point.lon_deg, b.point.lon_deg) && SameBits(a.radius_m, b.radius_m) &&
          a.reason == b.reason;
 }
 
