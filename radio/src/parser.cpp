@@ -181,8 +181,8 @@ std::optional<FrameView> FrameParser::Scan(bool end_of_stream) {
     }
 
     // A failed candidate: truncated when another preamble starts inside it (its
-    // sender was cut off and a new frame began), else corrupted. Then rescan from
-    // the byte after its first preamble byte so a frame inside it is not lost.
+    // sender was cut off and a new frame began), else corrupted. The scan goes on
+    // at the first preamble after its first byte, so a frame inside it is not lost.
     // A search that stopped at a partial preamble at the end of the buffer resumes
     // there when the same candidate is tried again with more bytes.
     const std::uint64_t candidate_offset = stats_.bytes - available;

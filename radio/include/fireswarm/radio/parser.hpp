@@ -1,7 +1,7 @@
 // Streaming parser for APOne frames (seed 5.3.4). Bytes arrive in any chunking;
 // the parser finds frames in garbage, survives truncated frames, false preambles
 // and bad checksums, and never loses the next valid frame after an error: after a
-// failed candidate it rescans from the byte after that candidate's preamble.
+// failed candidate it goes on at the next preamble after that candidate's first byte.
 // It owns one fixed buffer and allocates nothing while parsing. Its work is linear in
 // the bytes fed on any stream, however many false candidates overlap: each buffered
 // byte enters a running checksum once and a candidate's checksum comes from the
