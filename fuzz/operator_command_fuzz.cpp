@@ -1,5 +1,5 @@
 // LCM operator commands on any bytes, as the LCM bridge takes them: decode an
-// operator_command_t, FromLcm and CredentialsFromLcm, then Server::HandleSigned
+// operator_command_t (DecodeOperatorCommand), FromLcm and CredentialsFromLcm, then Server::HandleSigned
 // (refused unless the MAC is right), and the same command signed with the
 // fuzzing operator's key, so Handle's checks see every command that decodes.
 // Properties: nothing throws; a command FromLcm takes comes back the same from
@@ -13,9 +13,9 @@
 #include "fireswarm/server/server.hpp"
 #include "fuzz_check.hpp"
 
-namespace {
-
 namespace server = fireswarm::server;
+
+namespace {
 using fireswarm::fuzz::Check;
 
 constexpr const char* kOperator = "fuzz";
@@ -43,8 +43,10 @@ bool SameCommand(const server::OperatorCommand& a, const server::OperatorCommand
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  fireswarm::operator_command_t message;
-  if (message.decode(data, 0, static_cast<int>(size)) < 0) return 0;
+  const std::optional<fireswarm::operator_command_t> decoded =
+      server::DecodeOperatorCommand({data, size});
+  if (!decoded) return 0;
+  const fireswarm::operator_command_t& message = *decoded;
 
   server::ServerConfig config;
   config.operators[kOperator] = OperatorKey();
