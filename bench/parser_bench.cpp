@@ -1,6 +1,8 @@
 // FrameParser throughput (bytes/s of stream) in both checksum modes, on a clean
 // stream of mixed-size frames and on one with 10 % garbage between frames; the
-// garbage case also reports the fraction of intact frames found.
+// garbage case also reports the fraction of intact frames found; and on streams built
+// to be slow (issue 19: a preamble every few bytes promising long frames, nested
+// false preambles) against random bytes. bytes_per_second is the figure.
 //   build/bin/parser_bench [--benchmark_filter=...]
 #include <benchmark/benchmark.h>
 
@@ -127,6 +129,81 @@ BENCHMARK_CAPTURE(BM_FrameParser, xor_clean_uniform_0_255, ChecksumMode::kXor, S
                   0.0);
 BENCHMARK_CAPTURE(BM_FrameParser, xor_garbage10_fleet_mix, ChecksumMode::kXor, SizeMix::kFleet,
                   0.10);
+
+// Streams with no intact frame at all, the parser's worst cases and random bytes.
+enum class Hostile : int {
+  kPreambleEvery3,  // 70 96 AC repeated: a candidate every 3 bytes, length byte 0xAC
+  kPreambleFF,      // 70 96 AC FF repeated (the issue's finding): length byte 0x96
+  kHeader255,       // 70 96 AC 01 10 FF repeated: full headers with length 255
+  kNested,          // false and partial preambles one byte apart
+  kRandom,          // uniformly random bytes
+};
+
+std::vector<std::uint8_t> MakeHostileStream(Hostile kind) {
+  std::vector<std::uint8_t> unit;
+  switch (kind) {
+    case Hostile::kPreambleEvery3:
+      unit = {0x70, 0x96, 0xAC};
+      break;
+    case Hostile::kPreambleFF:
+      unit = {0x70, 0x96, 0xAC, 0xFF};
+      break;
+    case Hostile::kHeader255:
+      unit = {0x70, 0x96, 0xAC, 0x01, 0x10, 0xFF};
+      break;
+    case Hostile::kNested:
+      unit = {0x70, 0x70, 0x96, 0xAC, 0x70, 0x96, 0x70, 0xFF};
+      break;
+    case Hostile::kRandom: {
+      std::mt19937_64 rng(19);
+      std::vector<std::uint8_t> bytes(kStreamBytes);
+      for (std::uint8_t& byte : bytes) byte = static_cast<std::uint8_t>(rng());
+      return bytes;
+    }
+  }
+  std::vector<std::uint8_t> bytes;
+  bytes.reserve(kStreamBytes + unit.size());
+  while (bytes.size() < kStreamBytes) bytes.insert(bytes.end(), unit.begin(), unit.end());
+  return bytes;
+}
+
+void BM_FrameParserHostile(benchmark::State& state, ChecksumMode mode, Hostile kind) {
+  const std::vector<std::uint8_t> stream = MakeHostileStream(kind);
+  const std::span<const std::uint8_t> all(stream);
+  std::uint64_t examined = 0;
+  for (auto _ : state) {
+    FrameParser parser(mode);
+    const auto on_frame = [](const FrameView& frame) { benchmark::DoNotOptimize(frame.data.data()); };
+    for (std::size_t at = 0; at < all.size(); at += kReadSize) {
+      parser.Feed(all.subspan(at, std::min(kReadSize, all.size() - at)), on_frame);
+    }
+    parser.Finish(on_frame);
+    examined += parser.stats().examined_bytes;
+  }
+  state.SetBytesProcessed(static_cast<std::int64_t>(state.iterations()) *
+                          static_cast<std::int64_t>(stream.size()));
+  state.counters["examined_per_byte"] = static_cast<double>(examined) /
+                                        static_cast<double>(state.iterations()) /
+                                        static_cast<double>(stream.size());
+}
+
+BENCHMARK_CAPTURE(BM_FrameParserHostile, crc16_preamble_every_3, ChecksumMode::kCrc16,
+                  Hostile::kPreambleEvery3);
+BENCHMARK_CAPTURE(BM_FrameParserHostile, crc16_preamble_ff, ChecksumMode::kCrc16,
+                  Hostile::kPreambleFF);
+BENCHMARK_CAPTURE(BM_FrameParserHostile, crc16_header_255, ChecksumMode::kCrc16,
+                  Hostile::kHeader255);
+BENCHMARK_CAPTURE(BM_FrameParserHostile, crc16_nested, ChecksumMode::kCrc16, Hostile::kNested);
+BENCHMARK_CAPTURE(BM_FrameParserHostile, crc16_random, ChecksumMode::kCrc16, Hostile::kRandom);
+BENCHMARK_CAPTURE(BM_FrameParserHostile, xor_preamble_every_3, ChecksumMode::kXor,
+                  Hostile::kPreambleEvery3);
+BENCHMARK_CAPTURE(BM_FrameParserHostile, xor_header_255, ChecksumMode::kXor, Hostile::kHeader255);
+BENCHMARK_CAPTURE(BM_FrameParserHostile, xor_random, ChecksumMode::kXor, Hostile::kRandom);
+BENCHMARK_CAPTURE(BM_FrameParserHostile, secure_preamble_every_3, ChecksumMode::kSecure,
+                  Hostile::kPreambleEvery3);
+BENCHMARK_CAPTURE(BM_FrameParserHostile, secure_header_255, ChecksumMode::kSecure,
+                  Hostile::kHeader255);
+BENCHMARK_CAPTURE(BM_FrameParserHostile, secure_random, ChecksumMode::kSecure, Hostile::kRandom);
 
 }  // namespace
 

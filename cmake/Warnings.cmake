@@ -26,6 +26,20 @@ if(FIRESWARM_SANITIZE)
   add_link_options(-fsanitize=address,undefined)
 endif()
 
+if(FIRESWARM_FUZZ)
+  if(NOT CMAKE_CXX_COMPILER_ID STREQUAL "Clang")
+    message(FATAL_ERROR "FIRESWARM_FUZZ needs clang++ for libFuzzer, not "
+                        "${CMAKE_CXX_COMPILER_ID}: configure with -DCMAKE_CXX_COMPILER=clang++ "
+                        "(scripts/fuzz.sh does)")
+  endif()
+  # Every object carries libFuzzer's coverage hooks and the sanitizers; only the
+  # fuzz targets link libFuzzer itself (-fsanitize=fuzzer, fuzz/CMakeLists.txt).
+  # -fno-sanitize=vptr as in FIRESWARM_SANITIZE (LCM's subscription callback).
+  add_compile_options(-fsanitize=fuzzer-no-link,address,undefined -fno-sanitize=vptr
+                      -fno-omit-frame-pointer -fno-sanitize-recover=all)
+  add_link_options(-fsanitize=address,undefined)
+endif()
+
 # fireswarm_module(<name> SOURCES ... [PUBLIC_DEPS ...] [PRIVATE_DEPS ...])
 # A module library: public headers in <name>/include/fireswarm/<name>/, private
 # sources in <name>/src/. Target fireswarm_<name>, alias fireswarm::<name>.

@@ -1,11 +1,11 @@
 // APOne frame encoding and checksums (seed Table 5.3, seed 5.3.4.5).
 #include "fireswarm/radio/frame.hpp"
 
-#include <boost/crc.hpp>
 #include <stdexcept>
 #include <string>
 
 #include "byte_io.hpp"
+#include "range_checksum.hpp"
 
 namespace fireswarm::radio {
 
@@ -35,11 +35,9 @@ std::uint8_t Xor8(std::span<const std::uint8_t> bytes) {
 }
 
 std::uint16_t Crc16(std::span<const std::uint8_t> bytes) {
-  // CRC-16/CCITT-FALSE: width 16, polynomial 0x1021, init 0xFFFF, no final XOR, no
-  // reflection. Boost's table-driven implementation processes a byte per step.
-  boost::crc_optimal<16, 0x1021, 0xFFFF, 0, false, false> crc;
-  crc.process_bytes(bytes.data(), bytes.size());
-  return crc.checksum();
+  std::uint16_t crc = detail::kCrc16Initial;
+  for (const std::uint8_t byte : bytes) crc = detail::Crc16Step(crc, byte);
+  return crc;
 }
 
 void AppendFrame(std::vector<std::uint8_t>& out, std::uint8_t receiver, std::uint8_t message_id,

@@ -8,6 +8,8 @@
 #include <algorithm>
 #include <cstring>
 
+#include "range_checksum.hpp"
+
 namespace fireswarm::radio {
 namespace {
 
@@ -24,33 +26,43 @@ PreambleMatch PreambleAt(const std::uint8_t* at, const std::uint8_t* end) {
   return PreambleMatch::kYes;
 }
 
+// Where the search for another preamble inside a failed candidate stopped.
+struct InnerPreamble {
+  PreambleMatch match = PreambleMatch::kNo;
+  const std::uint8_t* at = nullptr;  // the preamble (kYes) or the first partial one (kMaybe)
+};
+
 // Whether another preamble starts in [first, last) of a candidate; bytes up to
-// `end` are buffered (a preamble starting near `last` may run past it).
-PreambleMatch PreambleStartsIn(const std::uint8_t* first, const std::uint8_t* last,
-                               const std::uint8_t* end) {
-  PreambleMatch result = PreambleMatch::kNo;
-  while (first < last) {
-    const void* hit = std::memchr(first, kPreamble[0], static_cast<std::size_t>(last - first));
-    if (hit == nullptr) break;
-    const auto* at = static_cast<const std::uint8_t*>(hit);
+// `end` are buffered (a preamble starting near `last` may run past it). The search
+// stops at the first preamble, which is the next candidate, so over a stream the
+// searches cover each byte about once; `examined_bytes` counts what was searched.
+InnerPreamble PreambleStartsIn(const std::uint8_t* first, const std::uint8_t* last,
+                               const std::uint8_t* end, std::uint64_t& examined_bytes) {
+  InnerPreamble result;
+  const std::uint8_t* at = first;
+  while (at < last) {
+    const void* hit = std::memchr(at, kPreamble[0], static_cast<std::size_t>(last - at));
+    if (hit == nullptr) {
+      at = last;
+      break;
+    }
+    at = static_cast<const std::uint8_t*>(hit);
     const PreambleMatch match = PreambleAt(at, end);
-    if (match == PreambleMatch::kYes) return match;
-    if (match == PreambleMatch::kMaybe) result = match;
-    first = at + 1;
+    if (match == PreambleMatch::kYes) {
+      result = {match, at};
+      break;
+    }
+    if (match == PreambleMatch::kMaybe && result.match == PreambleMatch::kNo) result = {match, at};
+    ++at;
   }
+  examined_bytes += static_cast<std::uint64_t>(at - first);
   return result;
 }
 
-// Whether the frame starting at `frame` (preamble included, fully buffered) carries
-// the right checksum over receiver ID, message ID, length and data.
-bool ChecksumMatches(const std::uint8_t* frame, std::size_t data_size, ChecksumMode mode) {
-  const std::size_t body = data_size + SecurityOverhead(mode);
-  const std::span<const std::uint8_t> covered(frame + kPreamble.size(),
-                                              kHeaderSize - kPreamble.size() + body);
-  const std::uint8_t* checksum = frame + kHeaderSize + body;
-  if (mode == ChecksumMode::kXor) return Xor8(covered) == checksum[0];
-  const auto received = static_cast<std::uint16_t>(checksum[0] | (checksum[1] << 8));
-  return Crc16(covered) == received;
+// The checksum a fully buffered frame carries after its covered bytes.
+std::uint16_t ReceivedChecksum(const std::uint8_t* checksum, ChecksumMode mode) {
+  if (mode == ChecksumMode::kXor) return checksum[0];
+  return static_cast<std::uint16_t>(checksum[0] | (checksum[1] << 8));
 }
 
 }  // namespace
@@ -64,8 +76,20 @@ FrameParser::FrameParser(ChecksumMode mode) : mode_(mode) {
 std::size_t FrameParser::Push(std::span<const std::uint8_t> bytes) {
   if (begin_ == end_) {
     begin_ = end_ = 0;
+    ForgetStates();
   } else if (kBufferSize - end_ < bytes.size() && begin_ > 0) {
     std::memmove(buffer_.data(), buffer_.data() + begin_, end_ - begin_);
+    // The running states of the kept bytes move with them: a state depends only on
+    // the bytes before it since states_first_, not on where they sit.
+    if (states_first_ != kNoStates && states_last_ >= begin_) {
+      const std::size_t first = std::max(states_first_, begin_);
+      std::memmove(states_.data() + first - begin_, states_.data() + first,
+                   (states_last_ - first + 1) * sizeof(std::uint16_t));
+      states_first_ = first - begin_;
+      states_last_ -= begin_;
+    } else {
+      ForgetStates();
+    }
     end_ -= begin_;
     begin_ = 0;
   }
@@ -74,6 +98,21 @@ std::size_t FrameParser::Push(std::span<const std::uint8_t> bytes) {
   end_ += taken;
   stats_.bytes += taken;
   return taken;
+}
+
+std::uint16_t FrameParser::RangeChecksum(std::size_t first, std::size_t last) {
+  // Candidates come in stream order, so the states usually cover `first` already;
+  // otherwise they restart there, leaving out the bytes in no candidate.
+  if (states_first_ == kNoStates || first < states_first_ || first > states_last_) {
+    states_first_ = states_last_ = first;
+    states_[first] = detail::InitialChecksumState(mode_);
+  }
+  if (last > states_last_) {
+    detail::ExtendChecksumStates(mode_, buffer_.data(), states_.data(), states_last_, last);
+    stats_.examined_bytes += last - states_last_;
+    states_last_ = last;
+  }
+  return detail::ChecksumBetween(mode_, states_[first], states_[last], last - first);
 }
 
 std::optional<FrameView> FrameParser::Next() {
@@ -88,7 +127,10 @@ std::optional<FrameView> FrameParser::Scan(bool end_of_stream) {
     begin_ = position;
   };
   while (begin_ < end_) {
-    const void* hit = std::memchr(buffer + begin_, kPreamble[0], end_ - begin_);
+    // Hostile streams put a candidate right where the last one's search stopped.
+    const void* hit = buffer[begin_] == kPreamble[0]
+                          ? buffer + begin_
+                          : std::memchr(buffer + begin_, kPreamble[0], end_ - begin_);
     if (hit == nullptr) {
       skip_to(end_);
       break;
@@ -119,7 +161,10 @@ std::optional<FrameView> FrameParser::Scan(bool end_of_stream) {
       continue;
     }
 
-    if (ChecksumMatches(frame, data_size, mode_)) {
+    // The checksum covers receiver ID, message ID, length and the body after them.
+    const std::size_t checksum_at = start + frame_size - ChecksumSize(mode_);
+    if (RangeChecksum(start + kPreamble.size(), checksum_at) ==
+        ReceivedChecksum(buffer + checksum_at, mode_)) {
       ++stats_.frames;
       begin_ = start + frame_size;
       // Secure mode: the encrypted data sits behind key ID and counter.
@@ -136,16 +181,33 @@ std::optional<FrameView> FrameParser::Scan(bool end_of_stream) {
     }
 
     // A failed candidate: truncated when another preamble starts inside it (its
-    // sender was cut off and a new frame began), else corrupted. Then rescan from
-    // the byte after its first preamble byte so a frame inside it is not lost.
-    const PreambleMatch inner = PreambleStartsIn(frame + 1, frame + frame_size, end);
-    if (inner == PreambleMatch::kMaybe && !end_of_stream) return std::nullopt;
-    if (inner == PreambleMatch::kYes) {
+    // sender was cut off and a new frame began), else corrupted. The scan goes on
+    // at the first preamble after its first byte, so a frame inside it is not lost.
+    // A search that stopped at a partial preamble at the end of the buffer resumes
+    // there when the same candidate is tried again with more bytes.
+    const std::uint64_t candidate_offset = stats_.bytes - available;
+    const std::size_t searched = candidate_offset == resume_.candidate_offset ? resume_.searched : 0;
+    const InnerPreamble inner =
+        PreambleStartsIn(frame + 1 + searched, frame + frame_size, end, stats_.examined_bytes);
+    if (inner.match == PreambleMatch::kMaybe && !end_of_stream) {
+      resume_ = {.candidate_offset = candidate_offset,
+                 .searched = static_cast<std::size_t>(inner.at - (frame + 1))};
+      return std::nullopt;
+    }
+    if (inner.match == PreambleMatch::kYes) {
       ++stats_.truncated_frames;
     } else {
       ++stats_.checksum_errors;
     }
-    skip_to(start + 1);
+    // The search has shown that no preamble starts before the one it found (or, when
+    // it found none, inside the candidate), so the rescan resumes there directly.
+    if (inner.match == PreambleMatch::kYes) {
+      skip_to(static_cast<std::size_t>(inner.at - buffer));
+    } else if (inner.match == PreambleMatch::kNo) {
+      skip_to(start + frame_size);
+    } else {
+      skip_to(start + 1);
+    }
   }
   return std::nullopt;
 }
@@ -153,6 +215,8 @@ std::optional<FrameView> FrameParser::Scan(bool end_of_stream) {
 void FrameParser::Reset() {
   stats_ = {};
   begin_ = end_ = 0;
+  ForgetStates();
+  resume_ = {};
 }
 
 }  // namespace fireswarm::radio

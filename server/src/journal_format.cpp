@@ -20,6 +20,9 @@ template <class... Ts>
 struct Overloaded : Ts... {
   using Ts::operator()...;
 };
+// Deduction guide: clang 14 (the fuzz build) lacks C++20's aggregate deduction.
+template <class... Ts>
+Overloaded(Ts...) -> Overloaded<Ts...>;
 
 nlohmann::json WaypointsJson(const std::vector<radio::Waypoint>& waypoints) {
   nlohmann::json list = nlohmann::json::array();

@@ -168,9 +168,18 @@ LcmBridge::LcmBridge(const LcmBridgeConfig& config) : config_(config) {
 
 LcmBridge::~LcmBridge() = default;
 
-void LcmBridge::OnCommandMessage(const lcm::ReceiveBuffer*, const std::string&,
-                                 const operator_command_t* message) {
-  // An LCM callback: never throws.
+void LcmBridge::OnCommandMessage(const lcm::ReceiveBuffer* buffer, const std::string&) {
+  // An LCM callback: never throws. Decoded here, not by LCM's typed subscription,
+  // whose generated decode throws on some malformed strings (DecodeOperatorCommand).
+  const std::optional<operator_command_t> message = DecodeOperatorCommand(
+      {static_cast<const std::uint8_t*>(buffer->data), buffer->data_size});
+  if (!message) {
+    ++rejected_commands_;
+    CommandRefused refusal;
+    refusal.why = "malformed: not an operator_command_t";
+    commands_.emplace_back(std::move(refusal));
+    return;
+  }
   std::string why;
   if (const std::optional<OperatorCommand> command = FromLcm(*message, &why)) {
     commands_.emplace_back(SignedCommand{*command, CredentialsFromLcm(*message)});

@@ -222,6 +222,16 @@ radio_stats_t ToRadioStats(const Server& server, double now_s, std::int64_t utim
   return m;
 }
 
+std::optional<operator_command_t> DecodeOperatorCommand(std::span<const std::uint8_t> bytes) {
+  operator_command_t message;
+  try {
+    if (message.decode(bytes.data(), 0, static_cast<int>(bytes.size())) < 0) return std::nullopt;
+  } catch (const std::exception&) {
+    return std::nullopt;  // a string length <= 0: lcm-gen's decode throws
+  }
+  return message;
+}
+
 std::optional<OperatorCommand> FromLcm(const operator_command_t& message, std::string* why) {
   const auto refuse = [&](std::string reason) -> std::optional<OperatorCommand> {
     if (why != nullptr) *why = std::move(reason);

@@ -24,6 +24,9 @@ template <class... Ts>
 struct Overloaded : Ts... {
   using Ts::operator()...;
 };
+// Deduction guide: clang 14 (the fuzz build) lacks C++20's aggregate deduction.
+template <class... Ts>
+Overloaded(Ts...) -> Overloaded<Ts...>;
 
 // The configuration a restored server runs with: the radio's sequence restarts
 // half the space away from the last one journaled.

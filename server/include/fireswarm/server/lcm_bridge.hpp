@@ -19,6 +19,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <variant>
 #include <vector>
@@ -109,6 +110,11 @@ conflict_t ToConflict(const Conflict& conflict, std::int64_t utime, std::int64_t
 /// `why`) when the command constant is unknown or a field is out of range.
 /// Lossless for the commands it takes (MAC input: command_auth.hpp).
 std::optional<OperatorCommand> FromLcm(const operator_command_t& message, std::string* why);
+/// operator_command_t bytes as they arrive on kOperatorCommandChannel, decoded;
+/// nullopt when they are not one. Never throws: LCM 1.3.1's generated decode throws
+/// std::length_error on a string length of 0 or less (found by fuzz/operator_command),
+/// and an exception must not escape an LCM callback.
+std::optional<operator_command_t> DecodeOperatorCommand(std::span<const std::uint8_t> bytes);
 /// The message's credentials: operator_id, utime, nonce, mac.
 CommandCredentials CredentialsFromLcm(const operator_command_t& message);
 /// A signed command as an operator's tool publishes it.
@@ -160,8 +166,7 @@ class LcmBridge {
  private:
   template <typename Message>
   void Emit(const char* channel, const Message& message, std::int64_t utime);
-  void OnCommandMessage(const lcm::ReceiveBuffer* buffer, const std::string& channel,
-                        const operator_command_t* message);
+  void OnCommandMessage(const lcm::ReceiveBuffer* buffer, const std::string& channel);
 
   LcmBridgeConfig config_;
   std::unique_ptr<lcm::LCM> lcm_;
