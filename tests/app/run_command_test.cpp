@@ -19,6 +19,7 @@
 
 #include "app/run_fireswarm.hpp"
 #include "fireswarm/command_status_t.hpp"
+#include "fireswarm/conflict_t.hpp"
 #include "fireswarm/fire_track_list_t.hpp"
 #include "fireswarm/mission_status_t.hpp"
 #include "fireswarm/operator_command_t.hpp"
@@ -214,6 +215,13 @@ TEST_F(RunCommandTest, LogsTheServerOnLcmInSimulatedTime) {
       EXPECT_EQ(status.utime, event.timestamp);
       EXPECT_EQ(status.command, fireswarm::operator_command_t::START);
       EXPECT_EQ(status.target_count, 2);
+    } else if (event.channel == "FIRESWARM_CONFLICTS") {
+      // The two drones' take-offs from neighbouring stands, watched.
+      const auto conflict = Decode<fireswarm::conflict_t>(event);
+      EXPECT_EQ(conflict.utime, event.timestamp);
+      EXPECT_EQ(conflict.vehicle_a, 1);
+      EXPECT_EQ(conflict.vehicle_b, 2);
+      EXPECT_LE(conflict.detected_utime, conflict.utime);
     } else {
       ADD_FAILURE() << "unexpected channel " << event.channel;
     }

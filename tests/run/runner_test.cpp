@@ -152,7 +152,8 @@ TEST(RunScenario, ReportJsonHasTheContractKeys) {
   for (const auto& item : j.items()) keys.push_back(item.key());
   EXPECT_EQ(keys, (std::vector<std::string>{"fires", "false_tracks", "tracks", "investigations",
                                             "coverage", "coverage_over_time", "collisions",
-                                            "min_separation_m", "radio", "vehicles", "sim_seconds",
+                                            "min_separation_m", "separation", "radio", "vehicles",
+                                            "sim_seconds",
                                             "wall_seconds", "real_time_factor", "expect"}));
   std::vector<std::string> fire_keys;
   for (const auto& item : j["fires"][0].items()) fire_keys.push_back(item.key());
@@ -163,6 +164,10 @@ TEST(RunScenario, ReportJsonHasTheContractKeys) {
   for (const char* key :
        {"busy_fraction", "telemetry_age_s", "retries", "report_latency_s", "reports_lost"}) {
     EXPECT_TRUE(j["radio"].contains(key)) << key;
+  }
+  for (const char* key : {"rule", "separation_m", "conflicts", "orders", "resolved",
+                          "lost_separation", "closest", "lost"}) {
+    EXPECT_TRUE(j["separation"].contains(key)) << key;
   }
   for (const auto& item : j["vehicles"].items()) {
     EXPECT_TRUE(item.value().contains("distance_m"));

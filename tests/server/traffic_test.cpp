@@ -38,42 +38,57 @@ struct Outcome {
   std::map<int, int> orders_to;  // vehicle -> orders it got
 };
 
+constexpr double kDroneStepS = 0.1;  // the drones' time step
+
+// Every drone's telemetry at `t`.
+void ReportAll(const std::vector<Drone>& drones, TrafficControl& watch, double t) {
+  for (const Drone& d : drones) {
+    TrafficSample sample;
+    sample.position_m = d.position_m;
+    sample.velocity_mps = {d.velocity_mps.x(), d.velocity_mps.y(), d.climb_mps};
+    sample.at_s = t;
+    watch.Observe(d.id, sample);
+  }
+}
+
+// `order`, given at `t`, acts on its drone `radio_delay_s` later.
+void DeliverOrder(std::vector<Drone>& drones, const AvoidOrder& order, double t,
+             double radio_delay_s) {
+  for (Drone& d : drones) {
+    if (d.id != order.vehicle) continue;
+    d.ordered_altitude_m = order.altitude_m;
+    d.order_acts_s = t + radio_delay_s;
+    d.order_until_s = t + order.duration_s;
+  }
+}
+
+// One step from `t`: straight on, climbing or descending to an order that acts.
+void AdvanceDrone(Drone& d, double t) {
+  d.climb_mps = 0.0;
+  if (d.ordered_altitude_m && t >= d.order_acts_s && t < d.order_until_s) {
+    const double error = *d.ordered_altitude_m - d.position_m.z();
+    d.climb_mps = std::clamp(error / kDroneStepS, -kDescentMps, kClimbMps);
+  }
+  d.position_m += Eigen::Vector3d(d.velocity_mps.x(), d.velocity_mps.y(), d.climb_mps) * kDroneStepS;
+}
+
 // Flies `drones` for `duration_s` with the watch stepping every 0.5 s; an order
 // reaches its drone `radio_delay_s` after it is given.
 Outcome Fly(std::vector<Drone>& drones, TrafficControl& watch, double duration_s,
             double radio_delay_s) {
   Outcome out;
-  constexpr double kDtS = 0.1;
   double next_telemetry_s = 0.0;
-  for (double t = 0.0; t < duration_s; t += kDtS) {
+  for (double t = 0.0; t < duration_s; t += kDroneStepS) {
     if (t + 1e-9 >= next_telemetry_s) {
       next_telemetry_s += kTelemetryS;
-      for (const Drone& d : drones) {
-        TrafficSample sample;
-        sample.position_m = d.position_m;
-        sample.velocity_mps = {d.velocity_mps.x(), d.velocity_mps.y(), d.climb_mps};
-        sample.at_s = t;
-        watch.Observe(d.id, sample);
-      }
+      ReportAll(drones, watch, t);
     }
     for (const AvoidOrder& order : watch.Step(t)) {
       ++out.orders;
       ++out.orders_to[order.vehicle];
-      for (Drone& d : drones) {
-        if (d.id != order.vehicle) continue;
-        d.ordered_altitude_m = order.altitude_m;
-        d.order_acts_s = t + radio_delay_s;
-        d.order_until_s = t + order.duration_s;
-      }
+      DeliverOrder(drones, order, t, radio_delay_s);
     }
-    for (Drone& d : drones) {
-      d.climb_mps = 0.0;
-      if (d.ordered_altitude_m && t >= d.order_acts_s && t < d.order_until_s) {
-        const double error = *d.ordered_altitude_m - d.position_m.z();
-        d.climb_mps = std::clamp(error / kDtS, -kDescentMps, kClimbMps);
-      }
-      d.position_m += Eigen::Vector3d(d.velocity_mps.x(), d.velocity_mps.y(), d.climb_mps) * kDtS;
-    }
+    for (Drone& d : drones) AdvanceDrone(d, t);
     for (std::size_t i = 0; i < drones.size(); ++i) {
       for (std::size_t j = i + 1; j < drones.size(); ++j) {
         out.min_separation_m =
@@ -198,37 +213,18 @@ TEST(TrafficControl, ALostDroneFlyingHomeThroughACrowdIsAvoidedByTheOthers) {
   Drone lost = At(5, 0.0, -600.0, 60.0, 0.0, 10.0);
   double min_to_lost_m = std::numeric_limits<double>::infinity();
   int orders = 0;
-  constexpr double kDtS = 0.1;
-  for (double t = 0.0; t < 120.0; t += kDtS) {
-    if (std::fmod(t + 1e-9, 1.0) < kDtS) {
-      for (const Drone& d : crowd) {
-        TrafficSample sample;
-        sample.position_m = d.position_m;
-        sample.velocity_mps = {d.velocity_mps.x(), d.velocity_mps.y(), d.climb_mps};
-        sample.at_s = t;
-        watch.Observe(d.id, sample);
-      }
-    }
+  for (double t = 0.0; t < 120.0; t += kDroneStepS) {
+    if (std::fmod(t + 1e-9, kTelemetryS) < kDroneStepS) ReportAll(crowd, watch, t);
     for (const AvoidOrder& order : watch.Step(t)) {
       ASSERT_NE(order.vehicle, 5) << "a lost drone cannot be told";
       ++orders;
-      for (Drone& d : crowd) {
-        if (d.id != order.vehicle) continue;
-        d.ordered_altitude_m = order.altitude_m;
-        d.order_acts_s = t + kWorstRadioDelayS;
-        d.order_until_s = t + order.duration_s;
-      }
+      DeliverOrder(crowd, order, t, kWorstRadioDelayS);
     }
     for (Drone& d : crowd) {
-      d.climb_mps = 0.0;
-      if (d.ordered_altitude_m && t >= d.order_acts_s && t < d.order_until_s) {
-        d.climb_mps = std::clamp((*d.ordered_altitude_m - d.position_m.z()) / kDtS, -kDescentMps,
-                                 kClimbMps);
-      }
-      d.position_m += Eigen::Vector3d(d.velocity_mps.x(), d.velocity_mps.y(), d.climb_mps) * kDtS;
+      AdvanceDrone(d, t);
       min_to_lost_m = std::min(min_to_lost_m, (d.position_m - lost.position_m).norm());
     }
-    if (lost.position_m.y() < 600.0) lost.position_m.y() += 10.0 * kDtS;
+    if (lost.position_m.y() < 600.0) lost.position_m.y() += 10.0 * kDroneStepS;
   }
   EXPECT_GE(orders, 1);
   EXPECT_GE(min_to_lost_m, config.separation_m);
