@@ -8,6 +8,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <span>
 #include <stdexcept>
 #include <utility>
 #include <variant>
@@ -27,6 +28,20 @@ namespace {
 constexpr double kLostDroneSpeedMps = 10.0;
 constexpr double kLostDroneDescentMps = 1.0;
 constexpr double kLostDroneSlackS = 60.0;
+
+// The waypoints of the sortie `vehicle` flies now (its last when it is done);
+// empty without a mission for it. The vehicle holds just this sortie.
+std::span<const radio::Waypoint> SortieFlown(const MissionManager* mission, std::uint8_t vehicle) {
+  if (mission == nullptr) return {};
+  const std::vector<std::uint8_t> vehicles = mission->vehicles();  // ascending
+  if (!std::ranges::binary_search(vehicles, vehicle)) return {};
+  const DroneMission& flown = mission->mission_of(vehicle);
+  const std::size_t sorties = SortieCount(flown);
+  if (sorties == 0) return {};
+  const auto [first, end] =
+      SortieRange(flown, std::min(mission->progress(vehicle).sortie, sorties - 1));
+  return std::span<const radio::Waypoint>(flown.waypoints).subspan(first, end - first);
+}
 
 // Room the transit planner keeps around the no-fly zones for its sampling, m (it
 // grows its box to each query's endpoints as well).
@@ -237,19 +252,12 @@ std::optional<double> Server::IntentAltitudeM(std::uint8_t vehicle, radio::Fligh
   if (mode != radio::FlightMode::kTakeoff && mode != radio::FlightMode::kReturnToLaunch) {
     return std::nullopt;
   }
-  if (!mission_) return std::nullopt;
-  const std::vector<std::uint8_t> vehicles = mission_->vehicles();
-  if (std::ranges::find(vehicles, vehicle) == vehicles.end()) return std::nullopt;
   // The vehicle's sortie: it climbs out to its first waypoint's altitude and
   // flies home at its last's (agents' ClimbOutAltitudeM, ReturnAltitudeM).
-  const DroneMission& flown = mission_->mission_of(vehicle);
-  const std::size_t sorties = SortieCount(flown);
-  if (sorties == 0) return std::nullopt;
-  const auto [first, end] = SortieRange(flown, std::min(mission_->progress(vehicle).sortie, sorties - 1));
-  if (end <= first) return std::nullopt;
-  const double altitude_m = mode == radio::FlightMode::kTakeoff
-                                ? flown.waypoints[first].altitude_m
-                                : flown.waypoints[end - 1].altitude_m;
+  const std::span<const radio::Waypoint> sortie = SortieFlown(mission(), vehicle);
+  if (sortie.empty()) return std::nullopt;
+  const double altitude_m =
+      mode == radio::FlightMode::kTakeoff ? sortie.front().altitude_m : sortie.back().altitude_m;
   if (altitude_m <= 0.0) return std::nullopt;
   return altitude_m;
 }
@@ -273,18 +281,12 @@ void Server::ResolveConflicts(double now_s) {
     sample.at_s = state.telemetry_time_s;
     double altitude_m = last.altitude_m;
     double speed_mps = kLostDroneSpeedMps;
-    const std::vector<std::uint8_t> flying_a_mission =
-        mission_ ? mission_->vehicles() : std::vector<std::uint8_t>{};
-    if (std::ranges::find(flying_a_mission, vehicle) != flying_a_mission.end()) {
-      const DroneMission& flown = mission_->mission_of(vehicle);
-      const auto [first, end] =
-          SortieRange(flown, std::min(mission_->progress(vehicle).sortie, SortieCount(flown) - 1));
-      // The vehicle flies home at its sortie's way home altitude (agents'
-      // Vehicle::ReturnAltitudeM).
-      if (end > first && flown.waypoints[end - 1].altitude_m > 0.0) {
-        altitude_m = flown.waypoints[end - 1].altitude_m;
-        if (flown.waypoints[end - 1].speed_mps > 0.0) speed_mps = flown.waypoints[end - 1].speed_mps;
-      }
+    // The vehicle flies home at its sortie's way home altitude (agents'
+    // Vehicle::ReturnAltitudeM).
+    const std::span<const radio::Waypoint> sortie = SortieFlown(mission(), vehicle);
+    if (!sortie.empty() && sortie.back().altitude_m > 0.0) {
+      altitude_m = sortie.back().altitude_m;
+      if (sortie.back().speed_mps > 0.0) speed_mps = sortie.back().speed_mps;
     }
     const double home_s = (stand->second - where).norm() / speed_mps;
     traffic_.ExpectLost(vehicle, sample, stand->second, altitude_m, speed_mps,
