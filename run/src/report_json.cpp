@@ -109,6 +109,7 @@ nlohmann::ordered_json ToJson(const Report& report) {
                      {"orders", separation.orders},
                      {"resolved", separation.resolved},
                      {"lost_separation", separation.lost_separation},
+                     {"takeoffs_held", separation.takeoffs_held},
                      {"closest", nullptr},
                      {"lost", Json::array()}};
   for (const SeparationOutcome::Lost& lost : separation.lost) {
@@ -131,6 +132,7 @@ nlohmann::ordered_json ToJson(const Report& report) {
   Json vehicles = Json::object();
   for (const auto& [id, vehicle] : report.vehicles) {
     vehicles[std::to_string(id)] = {{"distance_m", Number(vehicle.distance_m)},
+                                    {"airborne_s", Number(vehicle.airborne_s)},
                                     {"battery_used", Number(vehicle.battery_used)},
                                     {"final_state", vehicle.final_state},
                                     {"sorties",

@@ -169,7 +169,7 @@ server::SeparationConfig ReadSeparation(const Mapping& root) {
   if (!field) return out;
   const Mapping separation(*field, {"separation_m", "layer_m", "search_layers", "transit_sectors",
                                     "transit_min_m", "horizon_s", "resolve", "layers",
-                                    "max_altitude_m", "min_altitude_m"});
+                                    "sequence_takeoffs", "max_altitude_m", "min_altitude_m"});
   const Range positive{0.0, 10'000.0, true};
   out.separation_m = separation.Number("separation_m", out.separation_m, positive);
   out.layer_m = separation.Number("layer_m", out.layer_m, positive);
@@ -179,6 +179,7 @@ server::SeparationConfig ReadSeparation(const Mapping& root) {
   out.horizon_s = separation.Number("horizon_s", out.horizon_s, Range{0.0, 600.0, true});
   if (const auto f = separation.Find("resolve")) out.resolve = f->Bool();
   if (const auto f = separation.Find("layers")) out.layers = f->Bool();
+  if (const auto f = separation.Find("sequence_takeoffs")) out.sequence_takeoffs = f->Bool();
   out.max_altitude_m = separation.Number("max_altitude_m", out.max_altitude_m, positive);
   out.min_altitude_m =
       separation.Number("min_altitude_m", out.min_altitude_m, Range{0.0, 10'000.0});

@@ -112,10 +112,12 @@ void Scorer::Observe(double t_s, const sim2d::Simulation& simulation,
       const double dh = (truth.position_m - *trace.last_position_m).norm();
       const double dv = truth.altitude_m - trace.last_altitude_m;
       trace.distance_m += std::hypot(dh, dv);
+      if (Flying(truth)) trace.airborne_s += t_s - last_observed_s_;
     }
     trace.last_position_m = truth.position_m;
     trace.last_altitude_m = truth.altitude_m;
   }
+  last_observed_s_ = t_s;
   if (t_s + kEps >= next_coverage_s_) {
     next_coverage_s_ += kCoverageSampleS;
     for (const sim2d::VehicleTruth& truth : world.Truths()) {
@@ -356,6 +358,7 @@ Report Scorer::Finish(const sim2d::World& world, const server::Server& server,
   for (const auto& [id, trace] : traces_) {
     VehicleOutcome vehicle;
     vehicle.distance_m = trace.distance_m;
+    vehicle.airborne_s = trace.airborne_s;
     vehicle.battery_used = 1.0 - world.Truth(id).battery_fraction;
     const auto mode = final_state.modes.find(id);
     vehicle.final_state = mode != final_state.modes.end() ? mode->second : "unknown";

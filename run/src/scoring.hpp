@@ -80,6 +80,7 @@ class Scorer {
  private:
   struct VehicleTrace {
     double distance_m = 0.0;
+    double airborne_s = 0.0;
     std::optional<sim2d::Vec2> last_position_m;
     double last_altitude_m = 0.0;
     std::vector<common::LatLon> track;
@@ -115,6 +116,7 @@ class Scorer {
   bool separation_seen_ = false;
   std::int64_t steps_ = 0;
   double next_coverage_s_ = 0.0;
+  double last_observed_s_ = 0.0;  // the last Observe()'s time
   double next_series_s_ = 0.0;
   double next_second_s_ = 0.0;
   double next_track_s_ = 0.0;

@@ -118,9 +118,9 @@ std::vector<DroneMission> WithoutLaunchSite(
     };
     std::vector<std::vector<radio::Waypoint>> sorties = SortiesOf(mission);
     for (std::vector<radio::Waypoint>& route : sorties) {
-      while (route.size() > 1 && at_launch(route.back())) route.pop_back();
+      while (!route.empty() && at_launch(route.back())) route.pop_back();
       std::size_t first = 0;
-      while (first + 1 < route.size() && at_launch(route[first])) ++first;
+      while (first < route.size() && at_launch(route[first])) ++first;
       route.erase(route.begin(), route.begin() + static_cast<std::ptrdiff_t>(first));
     }
     SetSorties(mission, sorties);

@@ -47,6 +47,10 @@ MissionManager::Drone MissionManager::DroneFor(DroneMission mission) {
   drone.progress.waypoint_count = mission.waypoints.size();
   drone.progress.sortie_count = SortieCount(mission);
   drone.mission = std::move(mission);
+  if (drone.mission.waypoints.empty()) {
+    drone.progress.phase = DronePhase::kDone;  // nothing to fly: it stays on its stand
+    return drone;
+  }
   LoadSortie(drone, 0);
   return drone;
 }
@@ -198,7 +202,13 @@ void MissionManager::SendChunk(Drone& drone, std::size_t index) {
   pending_[id] = Pending{drone.mission.vehicle, static_cast<int>(index)};
 }
 
-void MissionManager::SendStart(Drone& drone) {
+void MissionManager::SendStart(Drone& drone, common::Nanos now) {
+  if (start_gate_ && !start_gate_(drone.mission.vehicle, now)) {
+    drone.progress.phase = DronePhase::kStarting;
+    ++drone.progress.start_holds;
+    drone.retry_start_at = now + common::FromSeconds(config_.gate_retry_s);
+    return;
+  }
   radio::Command start;
   start.type = radio::CommandType::kStartMission;
   start.mission_id = SortieMissionId(drone.mission, drone.progress.sortie);
@@ -249,7 +259,7 @@ void MissionManager::OnFinished(const radio::RequestFinished& finished) {
     ++drone.progress.chunks_acked;
     if (ack->status == radio::MissionAckStatus::kComplete &&
         drone.progress.phase == DronePhase::kUploading) {
-      SendStart(drone);
+      SendStart(drone, finished.finished);
     }
     return;
   }
@@ -351,7 +361,7 @@ void MissionManager::StopSorties() {
 void MissionManager::Step(common::Nanos now) {
   for (auto& [vehicle, drone] : drones_) {
     if (drone.progress.phase == DronePhase::kStarting && drone.retry_start_at <= now) {
-      SendStart(drone);
+      SendStart(drone, now);
     }
   }
 }
@@ -366,6 +376,7 @@ void MissionManager::RestorePhase(std::uint8_t vehicle, DronePhase phase, std::s
                                   const std::optional<std::vector<std::size_t>>& sortie_starts) {
   Drone& drone = Find(vehicle);
   DroneMission& mission = drone.mission;
+  if (mission.waypoints.empty()) return;  // nothing to fly: done from the start
   // Sorties cut short made their rests sorties of their own: the journal has
   // where every sortie begins now.
   if (sortie_starts && *sortie_starts != mission.sortie_starts) {

@@ -28,6 +28,9 @@ namespace {
 constexpr double kLostDroneSpeedMps = 10.0;
 constexpr double kLostDroneDescentMps = 1.0;
 constexpr double kLostDroneSlackS = 60.0;
+// How many waypoints ahead a drone on its route is predicted along (take-off
+// clearances look about a minute ahead: at 10 m/s, lanes are longer than 50 m).
+constexpr std::size_t kRouteAheadWaypoints = 12;
 
 // The waypoints of the sortie `vehicle` flies now (its last when it is done);
 // empty without a mission for it. The vehicle holds just this sortie.
@@ -170,6 +173,9 @@ void Server::LoadMission(std::vector<DroneMission> missions, double now_s,
   }
   MissionLoaded loaded{missions, airspace};
   mission_.emplace(*scheduler_, std::move(missions), config_.mission);
+  mission_->SetStartGate([this](std::uint8_t vehicle, common::Nanos now) {
+    return ClearToTakeOff(vehicle, common::ToSeconds(now));
+  });
   airspace_ = std::move(airspace);
   Record(now_s, std::move(loaded));
 }
@@ -244,6 +250,19 @@ void Server::WatchTraffic(std::uint8_t vehicle, const radio::Telemetry& telemetr
                          telemetry.climb_rate_mps};
   sample.at_s = now_s;
   sample.intent_altitude_m = IntentAltitudeM(vehicle, telemetry.mode);
+  // On its route (its sortie's, as the vehicle reports it): the waypoints ahead.
+  if (telemetry.mode == radio::FlightMode::kSearch && mission_ &&
+      std::ranges::binary_search(mission_->vehicles(), vehicle)) {
+    const DroneProgress& progress = mission_->progress(vehicle);
+    const std::span<const radio::Waypoint> sortie = SortieFlown(mission(), vehicle);
+    if (progress.phase == DronePhase::kFlying &&
+        telemetry.mission_id == SortieMissionId(mission_->mission_of(vehicle), progress.sortie) &&
+        telemetry.waypoint_index < sortie.size()) {
+      sample.route_m = RouteAhead(sortie, telemetry.waypoint_index);
+      const double speed_mps = sortie[telemetry.waypoint_index].speed_mps;
+      sample.route_speed_mps = speed_mps > 0.0 ? speed_mps : kLostDroneSpeedMps;
+    }
+  }
   traffic_.Observe(vehicle, sample);
 }
 
@@ -260,6 +279,31 @@ std::optional<double> Server::IntentAltitudeM(std::uint8_t vehicle, radio::Fligh
       mode == radio::FlightMode::kTakeoff ? sortie.front().altitude_m : sortie.back().altitude_m;
   if (altitude_m <= 0.0) return std::nullopt;
   return altitude_m;
+}
+
+std::vector<Eigen::Vector3d> Server::RouteAhead(std::span<const radio::Waypoint> sortie,
+                                                std::size_t from) const {
+  std::vector<Eigen::Vector3d> route;
+  for (std::size_t k = from; k < sortie.size() && route.size() < kRouteAheadWaypoints; ++k) {
+    const Eigen::Vector2d at = LocalM(frame_, {sortie[k].lat_deg, sortie[k].lon_deg});
+    route.emplace_back(at.x(), at.y(), sortie[k].altitude_m);
+  }
+  return route;
+}
+
+bool Server::ClearToTakeOff(std::uint8_t vehicle, double now_s) {
+  if (!config_.separation.sequence_takeoffs) return true;
+  const auto stand = stand_en_m_.find(vehicle);
+  const std::span<const radio::Waypoint> sortie = SortieFlown(mission(), vehicle);
+  if (stand == stand_en_m_.end() || sortie.empty() || sortie.front().altitude_m <= 0.0) {
+    return true;  // nothing to predict its take-off from
+  }
+  Departure departure;
+  departure.stand_m = stand->second;
+  departure.route_m = RouteAhead(sortie, 0);
+  departure.speed_mps =
+      sortie.front().speed_mps > 0.0 ? sortie.front().speed_mps : kLostDroneSpeedMps;
+  return traffic_.ClearToDepart(vehicle, departure, now_s);
 }
 
 void Server::ResolveConflicts(double now_s) {

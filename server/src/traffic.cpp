@@ -3,6 +3,7 @@
 #include "fireswarm/server/traffic.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -45,6 +46,11 @@ constexpr double kMaxOrderS = 180.0;
 constexpr double kReorderS = 5.0;
 // A ghost (lost drone) comes down over its home at this rate, m/s.
 constexpr double kGhostDescentMps = 1.0;
+// A departure is on its way (its reservation ends) at this fraction of its speed.
+constexpr double kOnItsWayFraction = 0.7;
+// The start delays a departure not yet seen climbing is predicted with, as
+// fractions of TrafficControl::kStartDelayMaxS.
+constexpr std::array<double, 3> kStartDelayFractions = {0.0, 0.5, 1.0};
 
 // How one drone is predicted to move from now: straight on horizontally, and
 // vertically toward an ordered altitude, or on its reported climb for a while.
@@ -61,8 +67,50 @@ struct Motion {
   bool ghost = false;
   Eigen::Vector2d home_m = Eigen::Vector2d::Zero();
   double ghost_speed_mps = 0.0;
+  // A take-off: climbs where it is from climb_starts_s on to climb_out_m, then
+  // flies its route.
+  bool departing = false;
+  double climb_out_m = 0.0;
+  double climb_starts_s = 0.0;
+  // A route (east, north, up) flown at route_speed_mps from route_starts_s on,
+  // from its first point (where it sets off); at its end it stays. route_at_s:
+  // when it passes each point, from route_starts_s.
+  std::vector<Eigen::Vector3d> route;
+  std::vector<double> route_at_s;
+  double route_starts_s = 0.0;
+
+  // Whether it moves along one straight line at one velocity all the time.
+  bool Straight() const { return !ghost && !departing && route.empty(); }
+  double ClimbEndS() const {
+    return climb_starts_s + std::max(0.0, climb_out_m - altitude_m) / kClimbMps;
+  }
+  // The route's legs' times from `points` at `speed_mps` (horizontal distance).
+  void SetRoute(std::vector<Eigen::Vector3d> points, double speed_mps, double starts_s) {
+    route = std::move(points);
+    route_starts_s = starts_s;
+    route_at_s.assign(route.size(), 0.0);
+    for (std::size_t k = 1; k < route.size(); ++k) {
+      const double leg_m = (route[k] - route[k - 1]).head<2>().norm();
+      route_at_s[k] = route_at_s[k - 1] + leg_m / std::max(speed_mps, 0.1);
+    }
+  }
+  // The leg flown `since_s` after setting off: [k, k + 1]; the last point once
+  // past the end (k + 1 == route.size()).
+  std::size_t LegAt(double since_s) const {
+    const auto after = std::upper_bound(route_at_s.begin(), route_at_s.end(), since_s);
+    return static_cast<std::size_t>(std::max<std::ptrdiff_t>(0, after - route_at_s.begin() - 1));
+  }
 
   Eigen::Vector2d PositionAt(double t) const {
+    if (!route.empty()) {
+      if (t <= route_starts_s) return position_m;
+      const double since_s = t - route_starts_s;
+      const std::size_t k = LegAt(since_s);
+      if (k + 1 >= route.size()) return route.back().head<2>();
+      const double leg_s = route_at_s[k + 1] - route_at_s[k];
+      const double f = leg_s > 0.0 ? (since_s - route_at_s[k]) / leg_s : 1.0;
+      return route[k].head<2>() + f * (route[k + 1] - route[k]).head<2>();
+    }
     if (!ghost) return position_m + velocity_mps * t;
     const Eigen::Vector2d to_home = home_m - position_m;
     const double distance = to_home.norm();
@@ -76,7 +124,7 @@ struct Motion {
       return std::max(0.0, altitude_m - kGhostDescentMps * std::max(0.0, t - arrival_s));
     }
     const double before = std::min(t, target_after_s);
-    double z = SelfAltitudeAt(target_m ? before : t);
+    double z = OwnAltitudeAt(target_m ? before : t);
     if (target_m && t > target_after_s) {
       const double after = t - target_after_s;
       const double rate = *target_m > z ? kClimbMps : kDescentMps;
@@ -86,8 +134,25 @@ struct Motion {
     return std::max(0.0, z);
   }
 
-  // Unordered: toward its own intent at its reported rate (at least the
-  // vehicles' usual one), or on its reported climb for a few seconds.
+  // Unordered: a take-off's climb, a route's altitudes, or as SelfAltitudeAt.
+  double OwnAltitudeAt(double t) const {
+    if (departing && t <= route_starts_s) {
+      const double climbed = kClimbMps * std::max(0.0, t - climb_starts_s);
+      return std::max(altitude_m, std::min(climb_out_m, altitude_m + climbed));
+    }
+    if (route.empty()) return SelfAltitudeAt(t);
+    // From each point's altitude toward the next at the vehicles' rates.
+    const double since_s = std::max(0.0, t - route_starts_s);
+    const std::size_t k = LegAt(since_s);
+    if (k + 1 >= route.size()) return route.back().z();
+    const double from = route[k].z();
+    const double to = route[k + 1].z();
+    const double changed = (to > from ? kClimbMps : kDescentMps) * (since_s - route_at_s[k]);
+    return to > from ? std::min(to, from + changed) : std::max(to, from - changed);
+  }
+
+  // Toward its own intent at its reported rate (at least the vehicles' usual
+  // one), or on its reported climb for a few seconds.
   double SelfAltitudeAt(double t) const {
     if (!intent_m) return altitude_m + climb_mps * std::min(t, kVerticalLookS);
     const bool up = *intent_m > altitude_m;
@@ -109,7 +174,7 @@ Approach Closest(const Motion& a, const Motion& b, double horizon_s, double reac
   Approach out;
   double first = 0.0;
   double last = horizon_s;
-  if (!a.ghost && !b.ghost) {
+  if (a.Straight() && b.Straight()) {
     // Straight lines: the window where the horizontal distance is under reach.
     const Eigen::Vector2d r = b.position_m - a.position_m;
     const Eigen::Vector2d w = b.velocity_mps - a.velocity_mps;
@@ -201,6 +266,13 @@ TrafficControl::TrafficControl(const SeparationConfig& config) : config_(config)
 void TrafficControl::Observe(int vehicle, const TrafficSample& sample) {
   tracks_[vehicle] = sample;
   ghosts_.erase(vehicle);  // heard again: no longer predicted blind
+  // On its way at speed: straight on predicts it from now on.
+  const auto departure = departures_.find(vehicle);
+  if (departure != departures_.end() &&
+      std::hypot(sample.velocity_mps.x(), sample.velocity_mps.y()) >=
+          kOnItsWayFraction * departure->second.departure.speed_mps) {
+    departures_.erase(departure);
+  }
 }
 
 void TrafficControl::Forget(int vehicle) {
@@ -221,8 +293,29 @@ Eigen::Vector2d Horizontal(const Eigen::Vector3d& v) {
   return {v.x(), v.y()};
 }
 
+// The departure as a motion: from `at_m` (its stand, or where its telemetry puts
+// it) and `altitude_m`, climbing from `delay_s` on, then along its waypoints.
+Motion DepartureMotion(int vehicle, const Departure& departure, const Eigen::Vector2d& at_m,
+                       double altitude_m, double delay_s) {
+  Motion m;
+  m.vehicle = vehicle;
+  m.departing = true;
+  m.position_m = at_m;
+  m.altitude_m = altitude_m;
+  m.climb_out_m = departure.route_m.front().z();
+  m.climb_starts_s = delay_s;
+  std::vector<Eigen::Vector3d> route = {{at_m.x(), at_m.y(), m.climb_out_m}};
+  route.insert(route.end(), departure.route_m.begin(), departure.route_m.end());
+  m.SetRoute(std::move(route), departure.speed_mps, m.ClimbEndS());
+  return m;
+}
+// Every drone watched, as predicted from `now_s`: a take-off cleared
+// (`departures`) as its departure goes until it is on its way at speed; with
+// `follow_routes`, a drone on its route along it; others straight on; an ordered
+// one toward its order; lost drones on their way home.
 std::vector<Motion> Motions(const std::map<int, TrafficSample>& tracks, const auto& ghosts,
-                            const auto& orders, double now_s) {
+                            const auto& orders, const auto& departures, double now_s,
+                            bool follow_routes) {
   std::vector<Motion> out;
   for (const auto& [vehicle, sample] : tracks) {
     const double age_s = std::clamp(now_s - sample.at_s, 0.0, kMaxExtrapolationS);
@@ -234,6 +327,18 @@ std::vector<Motion> Motions(const std::map<int, TrafficSample>& tracks, const au
     m.intent_m = sample.intent_altitude_m;
     m.altitude_m = sample.position_m.z();
     m.altitude_m = std::max(0.0, m.SelfAltitudeAt(age_s));
+    const auto departure = departures.find(vehicle);
+    if (departure != departures.end()) {
+      m = DepartureMotion(vehicle, departure->second.departure, m.position_m, m.altitude_m, 0.0);
+      m.climb_mps = sample.velocity_mps.z();
+    } else if (follow_routes && !sample.route_m.empty()) {
+      // Along its route from where it was reported, carried on to now.
+      std::vector<Eigen::Vector3d> route = {sample.position_m};
+      route.insert(route.end(), sample.route_m.begin(), sample.route_m.end());
+      m.SetRoute(std::move(route), sample.route_speed_mps, -age_s);
+      m.position_m = m.PositionAt(0.0);
+      m.altitude_m = m.OwnAltitudeAt(0.0);
+    }
     const auto order = orders.find(vehicle);
     if (order != orders.end() && order->second.until_s > now_s) {
       m.target_m = order->second.altitude_m;
@@ -261,14 +366,93 @@ std::vector<Motion> Motions(const std::map<int, TrafficSample>& tracks, const au
   return out;
 }
 
+
+// The box a drone's horizontal path stays in over [0, horizon_s].
+struct Box {
+  Eigen::Vector2d low;
+  Eigen::Vector2d high;
+  void Add(const Eigen::Vector2d& p) {
+    low = low.cwiseMin(p);
+    high = high.cwiseMax(p);
+  }
+};
+Box Sweep(const Motion& m, double horizon_s) {
+  Box box{m.PositionAt(0.0), m.PositionAt(0.0)};
+  box.Add(m.PositionAt(horizon_s));  // every kind's path is straight between these
+  for (std::size_t k = 0; k < m.route.size(); ++k) {  // ... or bends at its points
+    if (m.route_starts_s + m.route_at_s[k] > horizon_s) break;
+    box.Add(m.route[k].head<2>());
+  }
+  return box;
+}
+
+// Whether two drones' boxes (Sweep) are farther apart than reach_m in x or y:
+// a cheap test before sampling the pair.
+bool Apart(const Box& a, const Box& b, double reach_m) {
+  const Eigen::Vector2d gap = (b.low - a.high).cwiseMax(a.low - b.high);
+  return gap.maxCoeff() > reach_m;
+}
+
 }  // namespace
+
+bool TrafficControl::ClearToDepart(int vehicle, const Departure& departure, double now_s) {
+  std::erase_if(departures_, [&](const auto& entry) {
+    return entry.second.cleared_s + kDepartureHoldS <= now_s;
+  });
+  const double reach_m = config_.separation_m + kPredictionMarginM;
+  const double horizon_s =
+      kStartDelayMaxS + departure.route_m.front().z() / kClimbMps + kDepartureTransitS;
+
+  // The others: flying as their telemetry says, but those cleared to take off
+  // as their departures go (their telemetry shows no way out yet).
+  std::vector<Motion> others;
+  if (departure.route_m.empty()) {
+    throw std::invalid_argument("ClearToDepart: a departure needs its waypoints");
+  }
+  for (Motion& m : Motions(tracks_, ghosts_, orders_, departures_, now_s, /*follow_routes=*/true)) {
+    if (m.vehicle != vehicle) others.push_back(std::move(m));
+  }
+  for (const auto& [other, reserved] : departures_) {
+    if (other == vehicle || tracks_.contains(other) || ghosts_.contains(other)) continue;
+    const double since_s = now_s - reserved.cleared_s;
+    for (const double fraction : kStartDelayFractions) {
+      others.push_back(DepartureMotion(other, reserved.departure, reserved.departure.stand_m, 0.0,
+                                       std::max(0.0, fraction * kStartDelayMaxS - since_s)));
+    }
+  }
+
+  std::vector<Box> boxes;
+  for (const Motion& other : others) boxes.push_back(Sweep(other, horizon_s));
+  for (const double fraction : kStartDelayFractions) {
+    const Motion self = DepartureMotion(vehicle, departure, departure.stand_m, 0.0,
+                                        fraction * kStartDelayMaxS);
+    const Box box = Sweep(self, horizon_s);
+    for (std::size_t k = 0; k < others.size(); ++k) {
+      const Motion& other = others[k];
+      if (Apart(box, boxes[k], reach_m)) continue;
+      if (Closest(self, other, horizon_s, reach_m).distance_m < reach_m) {
+        ++counts_.takeoffs_held;
+        return false;
+      }
+    }
+  }
+  departures_[vehicle] = Reserved{departure, now_s};
+  return true;
+}
 
 std::vector<AvoidOrder> TrafficControl::Step(double now_s) {
   if (!Due(now_s)) return {};
   last_step_s_ = now_s;
   std::erase_if(ghosts_, [&](const auto& entry) { return entry.second.until_s <= now_s; });
   std::erase_if(orders_, [&](const auto& entry) { return entry.second.until_s <= now_s; });
-  std::vector<Motion> motions = Motions(tracks_, ghosts_, orders_, now_s);
+  std::erase_if(departures_, [&](const auto& entry) {
+    return entry.second.cleared_s + kDepartureHoldS <= now_s;
+  });
+  // Straight on (routes and departures are the clearances'): a prediction that
+  // follows routes sees fewer conflicts, and loses more of those it misses
+  // (docs/separation.md, "Take-offs in turn").
+  std::vector<Motion> motions =
+      Motions(tracks_, ghosts_, orders_, decltype(departures_){}, now_s, /*follow_routes=*/false);
   const double reach_m = config_.separation_m + kPredictionMarginM;
   const auto index_of = [&](int vehicle) -> std::size_t {
     for (std::size_t i = 0; i < motions.size(); ++i) {
@@ -283,8 +467,11 @@ std::vector<AvoidOrder> TrafficControl::Step(double now_s) {
     Approach approach;
   };
   std::vector<Predicted> predicted;
+  std::vector<Box> boxes;
+  for (const Motion& m : motions) boxes.push_back(Sweep(m, config_.horizon_s));
   for (std::size_t i = 0; i < motions.size(); ++i) {
     for (std::size_t j = i + 1; j < motions.size(); ++j) {
+      if (Apart(boxes[i], boxes[j], reach_m)) continue;
       const Approach approach = Closest(motions[i], motions[j], config_.horizon_s, reach_m);
       if (approach.distance_m >= reach_m) continue;
       predicted.push_back({std::minmax(motions[i].vehicle, motions[j].vehicle), approach});
@@ -352,7 +539,7 @@ std::vector<AvoidOrder> TrafficControl::Step(double now_s) {
         moved.target_after_s = kOrderDelayS;
         double score = std::abs(altitude - self.altitude_m) / config_.layer_m;
         for (std::size_t k = 0; k < motions.size(); ++k) {
-          if (k == m) continue;
+          if (k == m || Apart(boxes[m], boxes[k], reach_m)) continue;
           const Approach after = Closest(moved, motions[k], config_.horizon_s, reach_m);
           if (after.distance_m < reach_m) score += k == o ? 1000.0 : 100.0;
         }

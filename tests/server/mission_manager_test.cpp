@@ -98,6 +98,56 @@ TEST(MissionManager, AsksARefusedStartAgainUntilTheVehicleAccepts) {
   EXPECT_GE(end, 2 * common::FromSeconds(MissionManagerConfig{}.start_retry_s));
 }
 
+TEST(MissionManager, AStartTheGateHoldsGoesOutWhenTheGateSaysYes) {
+  Air air(0.0, radio::LinkMode::kPoll);
+  air.Add(3);
+  air.Add(4);
+  ManagedScheduler server(air.mode);
+  for (const std::uint8_t id : {std::uint8_t{3}, std::uint8_t{4}}) server.scheduler->AddVehicle(id, 1.0);
+  server.manager = std::make_unique<MissionManager>(
+      *server.scheduler, std::vector{Mission(3, 10), Mission(4, 10)});
+  // Vehicle 3 may go from 20 s on; vehicle 4 at once.
+  const Nanos opens = std::chrono::seconds(20);
+  std::vector<std::pair<int, Nanos>> asked;
+  server.manager->SetStartGate([&](std::uint8_t vehicle, Nanos now) {
+    asked.emplace_back(vehicle, now);
+    return vehicle == 4 || now >= opens;
+  });
+  server.manager->Begin();
+  const MissionManager& manager = *server.manager;
+  air.Run(server, kLimit, [&] { return manager.AllStarted(); });
+  EXPECT_EQ(manager.progress(3).phase, DronePhase::kFlying);
+  EXPECT_EQ(manager.progress(4).phase, DronePhase::kFlying);
+  EXPECT_EQ(manager.progress(4).start_holds, 0);
+  EXPECT_GT(manager.progress(3).start_holds, 10);  // asked every gate_retry_s
+  EXPECT_EQ(air.vehicle(3).starts_accepted(), 1) << "no start went out while held";
+  // Held, it was asked again about once a second until the gate opened.
+  Nanos last_3 = Nanos::min();
+  for (const auto& [vehicle, at] : asked) {
+    if (vehicle == 3) last_3 = at;
+  }
+  EXPECT_GE(last_3, opens);
+  EXPECT_LT(last_3, opens + common::FromSeconds(MissionManagerConfig{}.gate_retry_s) +
+                        std::chrono::milliseconds(100));
+}
+
+TEST(MissionManager, ADroneWithoutWaypointsIsDoneAtOnceAndNothingIsSent) {
+  Air air(0.0, radio::LinkMode::kPoll);
+  air.Add(1);
+  air.Add(2);
+  DroneMission idle;
+  idle.vehicle = 2;
+  idle.mission_id = 42;
+  ManagedScheduler server = Manage(air.mode, {1, 2}, {Mission(1, 10), idle});
+  const MissionManager& manager = *server.manager;
+  EXPECT_EQ(manager.progress(2).phase, DronePhase::kDone);
+  air.Run(server, kLimit, [&] { return manager.AllStarted(); });
+  EXPECT_EQ(manager.progress(1).phase, DronePhase::kFlying);
+  EXPECT_EQ(manager.progress(2).phase, DronePhase::kDone);
+  EXPECT_EQ(air.vehicle(2).starts_accepted(), 0);
+  EXPECT_TRUE(air.vehicle(2).waypoints().empty());
+}
+
 TEST(MissionManager, CompletesTheUploadOnALossyChannel) {
   Air air(0.2, radio::LinkMode::kSlots);
   std::vector<DroneMission> missions;

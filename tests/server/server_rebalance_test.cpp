@@ -67,7 +67,12 @@ radio::Telemetry At(double east_m, radio::FlightMode mode, std::uint16_t mission
 
 TEST(ServerRebalance, ADroneDoneTakesTheLastSortieNotStartedOfTheBusiestAtItsSite) {
   Air air(0.0);
-  Server server(ServerConfig{}, kFrame);
+  // The fake vehicles' telemetry stands still (2 "searches" next to 1's stand
+  // for ever): take-off clearances would hold 1 for good. This is about who
+  // flies what; the clearances have tests of their own (traffic_test.cpp).
+  ServerConfig config;
+  config.separation.sequence_takeoffs = false;
+  Server server(config, kFrame);
   // 1 and 2 stand 20 m apart (one site), 3 two kilometres away (another). 3 has
   // the most sorties to come, but not at 1's site.
   const std::vector<DroneMission> missions = {Sorties(1, 1, 0.0), Sorties(2, 3, 20.0),

@@ -1,6 +1,7 @@
 // The tactical watch (TrafficControl) in closed loop with drones that fly as
 // ordered: head-on, crossing and overtaking pairs at one altitude, a pair in
-// neighbouring layers, resolution off, a lost drone flying home through a crowd.
+// neighbouring layers, resolution off, a lost drone flying home through a crowd;
+// take-offs cleared in turn (ClearToDepart) over a site with traffic.
 // The drones here are kinematic (straight on, climbing or descending at the
 // vehicles' rates toward an ordered altitude after a delay that stands for the
 // radio's); tests/server/traffic_radio_test.cpp sends the orders over the radio.
@@ -228,6 +229,207 @@ TEST(TrafficControl, ALostDroneFlyingHomeThroughACrowdIsAvoidedByTheOthers) {
   }
   EXPECT_GE(orders, 1);
   EXPECT_GE(min_to_lost_m, config.separation_m);
+}
+
+// A take-off as the vehicle flies it: on its stand until its start arrives,
+// then straight up at the climb rate to its climb-out altitude, then toward its
+// first waypoint (and on) at its speed.
+struct TakeOff {
+  int id = 0;
+  Departure departure;
+  std::optional<double> climbs_from_s;  // its start arrived
+  Eigen::Vector3d position_m = Eigen::Vector3d::Zero();
+  Eigen::Vector3d velocity_mps = Eigen::Vector3d::Zero();
+
+  TakeOff(int vehicle, Eigen::Vector2d stand_m, Eigen::Vector2d first_m,
+          double climb_out_m = 105.0)
+      : id(vehicle) {
+    departure.stand_m = stand_m;
+    departure.route_m = {{first_m.x(), first_m.y(), climb_out_m}};
+    departure.speed_mps = 10.0;
+    position_m = {stand_m.x(), stand_m.y(), 0.0};
+  }
+  bool Airborne(double t) const { return climbs_from_s && t >= *climbs_from_s; }
+  void Advance(double t) {
+    velocity_mps.setZero();
+    if (!Airborne(t)) return;
+    const double climb_out_m = departure.route_m.front().z();
+    if (position_m.z() < climb_out_m) {
+      velocity_mps.z() = std::min(kClimbMps, (climb_out_m - position_m.z()) / kDroneStepS);
+    } else {
+      const Eigen::Vector2d out =
+          (departure.route_m.front().head<2>() - departure.stand_m).normalized();
+      velocity_mps.head<2>() = out * departure.speed_mps;
+    }
+    position_m += velocity_mps * kDroneStepS;
+  }
+  void Report(TrafficControl& watch, double t) const {
+    if (!Airborne(t)) return;
+    TrafficSample sample;
+    sample.position_m = position_m;
+    sample.velocity_mps = velocity_mps;
+    sample.at_s = t;
+    const double climb_out_m = departure.route_m.front().z();
+    if (position_m.z() < climb_out_m - 1.0) sample.intent_altitude_m = climb_out_m;
+    watch.Observe(id, sample);
+  }
+};
+
+// Flies `takeoffs` and the straight-on `traffic` for `duration_s` (no tactical
+// orders: the clearance alone). Each take-off asks for clearance every second
+// from `ask_from_s` (with `gated` false it starts at once); its start arrives
+// `start_delay_s` after the clearance. Returns the closest any two came.
+double FlyTakeOffs(std::vector<TakeOff>& takeoffs, std::vector<Drone> traffic,
+                   TrafficControl& watch, double duration_s, double ask_from_s,
+                   double start_delay_s, bool gated = true) {
+  double closest_m = std::numeric_limits<double>::infinity();
+  double next_telemetry_s = 0.0;
+  double next_ask_s = ask_from_s;
+  for (double t = 0.0; t < duration_s; t += kDroneStepS) {
+    if (t + 1e-9 >= next_telemetry_s) {
+      next_telemetry_s += kTelemetryS;
+      ReportAll(traffic, watch, t);
+      for (const TakeOff& d : takeoffs) d.Report(watch, t);
+    }
+    if (t + 1e-9 >= next_ask_s) {
+      next_ask_s += 1.0;
+      for (TakeOff& d : takeoffs) {
+        if (d.climbs_from_s) continue;
+        if (!gated || watch.ClearToDepart(d.id, d.departure, t)) d.climbs_from_s = t + start_delay_s;
+      }
+    }
+    for (Drone& d : traffic) AdvanceDrone(d, t);
+    for (TakeOff& d : takeoffs) d.Advance(t);
+    std::vector<Eigen::Vector3d> airborne;
+    for (const Drone& d : traffic) airborne.push_back(d.position_m);
+    for (const TakeOff& d : takeoffs) {
+      if (d.Airborne(t)) airborne.push_back(d.position_m);
+    }
+    for (std::size_t i = 0; i < airborne.size(); ++i) {
+      for (std::size_t j = i + 1; j < airborne.size(); ++j) {
+        closest_m = std::min(closest_m, (airborne[i] - airborne[j]).norm());
+      }
+    }
+  }
+  return closest_m;
+}
+
+// Drones flying east over the site at 90 m, a layer the take-off climbs
+// through on its way to 105 m: one every 15 s, the first over the stand 40 s in.
+// A climb through 90 +- 13 m takes 8.7 s and may start up to 8 s late: no gap in
+// the stream is wide enough, so the take-off must wait for its end.
+std::vector<Drone> EastboundStream() {
+  std::vector<Drone> stream;
+  for (int k = 0; k < 4; ++k) {
+    stream.push_back(At(20 + k, -400.0 - 150.0 * k, 0.0, 90.0, 90.0, 10.0));
+  }
+  return stream;
+}
+
+TEST(TrafficControl, ATakeOffWaitsUntilItsClimbIsClearOfTheTrafficOverItsStand) {
+  for (const double start_delay_s : {0.0, 4.0, TrafficControl::kStartDelayMaxS}) {
+    SCOPED_TRACE(start_delay_s);
+    SeparationConfig config;
+    TrafficControl watch(config);
+    std::vector<TakeOff> takeoff = {TakeOff(1, {0.0, 0.0}, {0.0, 600.0})};
+    const double closest_m = FlyTakeOffs(takeoff, EastboundStream(), watch, 200.0, 10.0,
+                                         start_delay_s);
+    EXPECT_GE(closest_m, config.separation_m);
+    EXPECT_GT(watch.counts().takeoffs_held, 0U);
+    ASSERT_TRUE(takeoff[0].climbs_from_s);  // the stream passes, the drone goes
+    EXPECT_GT(*takeoff[0].climbs_from_s, 60.0);
+    EXPECT_LT(*takeoff[0].climbs_from_s, 150.0);
+  }
+}
+
+TEST(TrafficControl, WithoutTheClearanceTheSameTakeOffClimbsIntoTheTraffic) {
+  SeparationConfig config;
+  TrafficControl watch(config);
+  std::vector<TakeOff> takeoff = {TakeOff(1, {0.0, 0.0}, {0.0, 600.0})};
+  const double closest_m =
+      FlyTakeOffs(takeoff, EastboundStream(), watch, 200.0, 10.0, 0.0, /*gated=*/false);
+  EXPECT_LT(closest_m, config.separation_m);
+}
+
+TEST(TrafficControl, TakeOffsFromOneSiteGoInTurnWhenOnesWayOutCrossesAnothersStand) {
+  // Drone 1 flies out east at 60 m over the stands of 2 and 3 (20 m apart),
+  // which climb through 60 m to 105 and 90 m; drone 4's way out, north at 105 m,
+  // crosses nobody's stand.
+  const auto fleet = [] {
+    return std::vector<TakeOff>{TakeOff(1, {0.0, 0.0}, {800.0, 0.0}, 60.0),
+                                TakeOff(2, {20.0, 0.0}, {800.0, 0.0}, 105.0),
+                                TakeOff(3, {40.0, 0.0}, {800.0, 0.0}, 90.0),
+                                TakeOff(4, {0.0, 20.0}, {0.0, 800.0}, 105.0)};
+  };
+  for (const double start_delay_s : {0.0, TrafficControl::kStartDelayMaxS}) {
+    SCOPED_TRACE(start_delay_s);
+    SeparationConfig config;
+    TrafficControl watch(config);
+    std::vector<TakeOff> takeoffs = fleet();
+    const double closest_m = FlyTakeOffs(takeoffs, {}, watch, 300.0, 0.0, start_delay_s);
+    EXPECT_GE(closest_m, config.separation_m);
+    for (const TakeOff& d : takeoffs) ASSERT_TRUE(d.climbs_from_s) << "drone " << d.id;
+    // 1 and 4 at once; 2 and 3 held at first, then let go when their climbs
+    // stay under 1 as it passes (or start after it has).
+    EXPECT_EQ(*takeoffs[0].climbs_from_s, start_delay_s);
+    EXPECT_EQ(*takeoffs[3].climbs_from_s, start_delay_s);
+    EXPECT_GT(*takeoffs[1].climbs_from_s, start_delay_s);
+    EXPECT_GT(*takeoffs[2].climbs_from_s, start_delay_s);
+    EXPECT_GE(watch.counts().takeoffs_held, 2U);
+  }
+  SeparationConfig config;
+  TrafficControl watch(config);
+  std::vector<TakeOff> all_at_once = fleet();
+  EXPECT_LT(FlyTakeOffs(all_at_once, {}, watch, 300.0, 0.0, 0.0, /*gated=*/false),
+            config.separation_m);
+}
+
+TEST(TrafficControl, ALostDronesWayHomeOverAStandHoldsItsTakeOff) {
+  SeparationConfig config;
+  TrafficControl watch(config);
+  // Lost 400 m west of the site at 105 m, flying home to a stand 30 m east of
+  // the departing drone's: it crosses the departing drone's column 40 s on, when
+  // the climb is at or near 105 m.
+  TrafficSample last;
+  last.position_m = {-400.0, 0.0, 105.0};
+  last.velocity_mps = {10.0, 0.0, 0.0};
+  watch.ExpectLost(9, last, {30.0, 0.0}, 105.0, 10.0, 300.0);
+  Departure departure;
+  departure.stand_m = {0.0, 0.0};
+  departure.route_m = {{0.0, 600.0, 105.0}};
+  departure.speed_mps = 10.0;
+  EXPECT_FALSE(watch.ClearToDepart(1, departure, 0.0));
+  EXPECT_EQ(watch.counts().takeoffs_held, 1U);
+  // Far from the way home, another take-off goes.
+  departure.stand_m = {0.0, 300.0};
+  departure.route_m = {{0.0, 900.0, 105.0}};
+  EXPECT_TRUE(watch.ClearToDepart(2, departure, 0.0));
+  departure.route_m.clear();
+  EXPECT_THROW(watch.ClearToDepart(3, departure, 0.0), std::invalid_argument);
+}
+
+TEST(TrafficControl, ATakeOffIsHeldForADroneWhoseRouteTurnsOverItsStand) {
+  SeparationConfig config;
+  TrafficControl watch(config);
+  // Drone 7 flies north at 90 m, 300 m west of the stand; its next waypoint,
+  // 50 m on, turns it east along a lane right over the stand, 35 s from now,
+  // when the climb passes 90 m. Straight on it would never come near.
+  TrafficSample lane;
+  lane.position_m = {-300.0, -50.0, 90.0};
+  lane.velocity_mps = {0.0, 10.0, 0.0};
+  lane.at_s = 0.0;
+  lane.route_m = {{-300.0, 0.0, 90.0}, {600.0, 0.0, 90.0}};
+  lane.route_speed_mps = 10.0;
+  watch.Observe(7, lane);
+  Departure departure;
+  departure.stand_m = {0.0, 0.0};
+  departure.route_m = {{0.0, 600.0, 105.0}};
+  departure.speed_mps = 10.0;
+  EXPECT_FALSE(watch.ClearToDepart(1, departure, 0.0));
+  // The same drone without its route (not flying its mission): straight on.
+  lane.route_m.clear();
+  watch.Observe(7, lane);
+  EXPECT_TRUE(watch.ClearToDepart(1, departure, 0.0));
 }
 
 TEST(SeparationConfig, RefusesBadValuesNamingTheField) {

@@ -110,6 +110,7 @@ struct SeparationOutcome {
   std::uint64_t orders = 0;     ///< resolutions sent over the radio
   std::uint64_t resolved = 0;   ///< passed apart
   std::uint64_t lost_separation = 0;  ///< passed closer than the limit, as reported
+  std::uint64_t takeoffs_held = 0;    ///< take-off clearances refused (asked again)
   std::optional<ClosestApproach> closest;  ///< where min_separation_m was sampled
   /// The conflicts that lost separation: when detected, the pair, the closest
   /// they were reported, what was ordered ("climb", "descend", "level", "none").
@@ -126,6 +127,7 @@ struct SeparationOutcome {
 
 struct VehicleOutcome {
   double distance_m = 0.0;    ///< flown, truth
+  double airborne_s = 0.0;    ///< time in the air, truth
   double battery_used = 0.0;  ///< fraction of a full charge of the pack in at the end, truth
   int sorties_planned = 0;    ///< in the plan (DronePlan::sorties)
   /// Ended with a landing, by the server's count (a sortie cut short counts, and

@@ -23,6 +23,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <optional>
 #include <string>
@@ -81,7 +82,9 @@ std::vector<DroneMission> ToDroneMissions(const planner::Plan& plan, std::uint16
 /// metres of `frame`; a drone not listed keeps its route) at either end of each
 /// sortie are dropped, or every vehicle would fly to the same point at the same
 /// altitude (each sortie ends with the vehicle's own return to its stand). A
-/// sortie of only the launch site keeps one waypoint.
+/// sortie of only the launch site is dropped: a drone the plan gave nothing to
+/// search gets a mission without waypoints, and stays on the ground
+/// (MissionManager: done at once, ready for others' work).
 std::vector<DroneMission> WithoutLaunchSite(
     std::vector<DroneMission> missions, const common::LocalFrame& frame,
     const std::map<std::uint8_t, common::EastNorth>& launch_of);
@@ -116,6 +119,7 @@ struct DroneProgress {
   std::size_t sortie_count = 1;   ///< sorties in the mission it has now
   std::size_t sorties_flown = 0;  ///< sorties ended with a landing, every mission it had
   int start_refusals = 0;         ///< starts the vehicle refused so far
+  int start_holds = 0;            ///< starts the gate held back so far
   std::string failure;            ///< why the drone failed (kFailed only)
 };
 
@@ -125,7 +129,13 @@ struct MissionManagerConfig {
   /// Rounds of resending a chunk whose request failed (each round is itself the
   /// scheduler's max_retries resends) before the drone is given up.
   int chunk_rounds = 3;
+  /// A start the gate holds (MissionManager::SetStartGate) is asked of the gate
+  /// again after this long, seconds.
+  double gate_retry_s = 1.0;
 };
+
+/// Asked before each start goes out: whether `vehicle` may take off at `now`.
+using StartGate = std::function<bool(std::uint8_t vehicle, common::Nanos now)>;
 
 class MissionManager {
  public:
@@ -133,6 +143,12 @@ class MissionManager {
   /// Throws std::invalid_argument for a vehicle listed twice.
   MissionManager(radio::ChannelRouter& scheduler, std::vector<DroneMission> missions,
                  const MissionManagerConfig& config = {});
+
+  /// Every start (each sortie's, a replaced mission's, a retry's) waits until
+  /// `gate` says yes, asked again every gate_retry_s; the drone stays kStarting
+  /// meanwhile (DroneProgress::start_holds counts the refusals). No gate: starts
+  /// go out at once.
+  void SetStartGate(StartGate gate) { start_gate_ = std::move(gate); }
 
   /// Queues every uploading drone's chunks; each drone's start follows its last
   /// chunk's ack.
@@ -239,7 +255,9 @@ class MissionManager {
   const Drone& Find(std::uint8_t vehicle) const;
   Drone& Find(std::uint8_t vehicle);
   void SendChunk(Drone& drone, std::size_t index);
-  void SendStart(Drone& drone);
+  // Asks the gate, then sends the start of the drone's sortie (or asks the gate
+  // again later).
+  void SendStart(Drone& drone, common::Nanos now);
   void OnFinished(const radio::RequestFinished& finished);
   void OnTelemetry(const radio::TelemetryReceived& telemetry);
   void Fail(Drone& drone, std::string why);
@@ -254,6 +272,7 @@ class MissionManager {
   std::map<radio::RequestId, Pending> pending_;
   std::uint64_t missions_version_ = 0;
   bool sorties_stopped_ = false;
+  StartGate start_gate_;
 };
 
 }  // namespace fireswarm::server

@@ -267,6 +267,14 @@ class Server {
   void WatchTraffic(std::uint8_t vehicle, const radio::Telemetry& telemetry,
                     const Eigen::Vector2d& where_en_m, double now_s);
   void ResolveConflicts(double now_s);
+  // The mission's start gate: whether the drone's take-off from its stand is
+  // clear of the traffic (TrafficControl::ClearToDepart); yes when take-offs are
+  // not sequenced or its stand or sortie is not known.
+  bool ClearToTakeOff(std::uint8_t vehicle, double now_s);
+  // The sortie's waypoints from index `from` on (at most kRouteAheadWaypoints),
+  // in local metres (east, north, up).
+  std::vector<Eigen::Vector3d> RouteAhead(std::span<const radio::Waypoint> sortie,
+                                          std::size_t from) const;
   // Where `vehicle` in `mode` climbs or descends to by itself (TrafficSample).
   std::optional<double> IntentAltitudeM(std::uint8_t vehicle, radio::FlightMode mode) const;
   void OnFireReport(const radio::FireReportReceived& received, double now_s);

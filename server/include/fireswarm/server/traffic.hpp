@@ -45,6 +45,10 @@ struct SeparationConfig {
   bool resolve = true;
   /// Strategic layers on (false: every drone at the fleet's altitude).
   bool layers = true;
+  /// Take-offs sequenced: a drone is told to start only when its climb and the
+  /// first stretch of its way out are predicted clear of every drone flying and
+  /// of every take-off cleared before it (TrafficControl::ClearToDepart).
+  bool sequence_takeoffs = true;
   /// Resolutions never send a drone above this or below min_altitude_m, m.
   double max_altitude_m = 300.0;
   double min_altitude_m = 30.0;
@@ -62,6 +66,11 @@ struct TrafficSample {
   /// Predicted all the way there; without it a reported climb is carried on for
   /// a few seconds only (a change of layer ends soon).
   std::optional<double> intent_altitude_m;
+  /// The waypoints ahead (east, north, up), the one it flies to first, while it
+  /// flies its mission's route at route_speed_mps; empty otherwise. Take-off
+  /// clearances predict it along them (the tactical watch: straight on).
+  std::vector<Eigen::Vector3d> route_m;
+  double route_speed_mps = 0.0;
 };
 
 enum class Resolution : std::uint8_t {
@@ -108,12 +117,23 @@ struct AvoidOrder {
   std::int32_t conflict_id = 0;
 };
 
+/// A take-off the server is about to order: from its stand the drone climbs
+/// straight up to its first waypoint's altitude, then flies its waypoints at
+/// speed_mps.
+struct Departure {
+  Eigen::Vector2d stand_m = Eigen::Vector2d::Zero();  ///< east, north
+  /// Its sortie's waypoints from the first (east, north, up); at least one.
+  std::vector<Eigen::Vector3d> route_m;
+  double speed_mps = 0.0;
+};
+
 /// Counts for the report and radio_stats-like summaries.
 struct TrafficCounts {
   std::uint64_t conflicts = 0;  ///< predicted
   std::uint64_t orders = 0;     ///< avoid orders handed to the radio
   std::uint64_t resolved = 0;
   std::uint64_t lost_separation = 0;
+  std::uint64_t takeoffs_held = 0;  ///< take-off clearances refused (asked again later)
 };
 
 class TrafficControl {
@@ -133,6 +153,24 @@ class TrafficControl {
   /// Whether `vehicle` is watched as flying (not lost, not on the ground).
   bool Flying(int vehicle) const { return tracks_.contains(vehicle); }
   bool Lost(int vehicle) const { return ghosts_.contains(vehicle); }
+
+  /// Whether `vehicle` may take off at `now_s`: its departure (the climb from a
+  /// start within kStartDelayMaxS, then kDepartureTransitS along its waypoints)
+  /// is predicted to keep the limit from every drone flying (along its route
+  /// when it flies one, else straight on), every lost drone's way home and every
+  /// departure cleared before it. Throws std::invalid_argument for a departure
+  /// without waypoints. A clear departure is reserved:
+  /// later clearances keep off it until the drone's telemetry shows it on its way
+  /// at speed (or kDepartureHoldS after its clearance). A refusal is counted
+  /// (counts().takeoffs_held); ask again later.
+  bool ClearToDepart(int vehicle, const Departure& departure, double now_s);
+  /// The longest a start command takes from the server's decision to the
+  /// vehicle's climb (a wait for its radio turn, a resend), s.
+  static constexpr double kStartDelayMaxS = 8.0;
+  /// How much of the way out, after the climb, a clearance looks at, s.
+  static constexpr double kDepartureTransitS = 20.0;
+  /// A reservation lapses this long after its clearance at the latest, s.
+  static constexpr double kDepartureHoldS = 120.0;
 
   /// Predicts, opens and closes conflicts at `now_s`; the orders to send now.
   /// Runs at most every kStepS (earlier calls return nothing).
@@ -163,6 +201,11 @@ class TrafficControl {
     double until_s = 0.0;
     double from_s = 0.0;  // when it was ordered
   };
+  struct Reserved {
+    Departure departure;
+    double cleared_s = 0.0;
+  };
+  std::map<int, Reserved> departures_;  // cleared take-offs not yet on their way
   std::map<int, Held> orders_;                       // vehicle -> its standing avoid order
   std::map<std::pair<int, int>, std::size_t> open_;  // pair -> index in conflicts_
   std::map<std::pair<int, int>, double> last_order_s_;  // pair -> when it was last resolved
