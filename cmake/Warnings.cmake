@@ -26,6 +26,17 @@ if(FIRESWARM_SANITIZE)
   add_link_options(-fsanitize=address,undefined)
 endif()
 
+# fireswarm_light_under_sanitizers(<target>): in the sanitizer build, <target>'s
+# own code compiles at -O0 instead of -O1. For the test suites and the executable:
+# their code drives the libraries, which keep -O1 and do the work the suites
+# wait for. Template-heavy code (GoogleTest, Boost.Beast) compiles about twice as
+# fast at -O0 under ASan (server's web unit: 136 s instead of 281 s).
+function(fireswarm_light_under_sanitizers target)
+  if(FIRESWARM_SANITIZE)
+    target_compile_options(${target} PRIVATE -O0)
+  endif()
+endfunction()
+
 if(FIRESWARM_FUZZ)
   if(NOT CMAKE_CXX_COMPILER_ID STREQUAL "Clang")
     message(FATAL_ERROR "FIRESWARM_FUZZ needs clang++ for libFuzzer, not "
