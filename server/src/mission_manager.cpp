@@ -202,8 +202,8 @@ void MissionManager::SendChunk(Drone& drone, std::size_t index) {
   pending_[id] = Pending{drone.mission.vehicle, static_cast<int>(index)};
 }
 
-void MissionManager::SendStart(Drone& drone, common::Nanos now) {
-  if (start_gate_ && !start_gate_(drone.mission.vehicle, now)) {
+void MissionManager::SendStart(Drone& drone, common::Nanos now, const StartGate& gate) {
+  if (gate && !gate(drone.mission.vehicle, now)) {
     drone.progress.phase = DronePhase::kStarting;
     ++drone.progress.start_holds;
     drone.retry_start_at = now + common::FromSeconds(config_.gate_retry_s);
@@ -224,15 +224,16 @@ void MissionManager::Fail(Drone& drone, std::string why) {
   drone.retry_start_at = common::Nanos::max();
 }
 
-void MissionManager::OnEvent(const radio::SchedulerEvent& event) {
+void MissionManager::OnEvent(const radio::SchedulerEvent& event, const StartGate& gate) {
   if (const auto* finished = std::get_if<radio::RequestFinished>(&event)) {
-    OnFinished(*finished);
+    OnFinished(*finished, gate);
   } else if (const auto* telemetry = std::get_if<radio::TelemetryReceived>(&event)) {
     OnTelemetry(*telemetry);
   }
 }
 
-void MissionManager::OnFinished(const radio::RequestFinished& finished) {
+void MissionManager::OnFinished(const radio::RequestFinished& finished,
+                                const StartGate& gate) {
   const auto found = pending_.find(finished.id);
   if (found == pending_.end()) return;  // someone else's request
   const Pending pending = found->second;
@@ -259,7 +260,7 @@ void MissionManager::OnFinished(const radio::RequestFinished& finished) {
     ++drone.progress.chunks_acked;
     if (ack->status == radio::MissionAckStatus::kComplete &&
         drone.progress.phase == DronePhase::kUploading) {
-      SendStart(drone, finished.finished);
+      SendStart(drone, finished.finished, gate);
     }
     return;
   }
@@ -358,10 +359,10 @@ void MissionManager::StopSorties() {
   }
 }
 
-void MissionManager::Step(common::Nanos now) {
+void MissionManager::Step(common::Nanos now, const StartGate& gate) {
   for (auto& [vehicle, drone] : drones_) {
     if (drone.progress.phase == DronePhase::kStarting && drone.retry_start_at <= now) {
-      SendStart(drone, now);
+      SendStart(drone, now, gate);
     }
   }
 }

@@ -173,9 +173,6 @@ void Server::LoadMission(std::vector<DroneMission> missions, double now_s,
   }
   MissionLoaded loaded{missions, airspace};
   mission_.emplace(*scheduler_, std::move(missions), config_.mission);
-  mission_->SetStartGate([this](std::uint8_t vehicle, common::Nanos now) {
-    return ClearToTakeOff(vehicle, common::ToSeconds(now));
-  });
   airspace_ = std::move(airspace);
   Record(now_s, std::move(loaded));
 }
@@ -183,7 +180,7 @@ void Server::LoadMission(std::vector<DroneMission> missions, double now_s,
 std::vector<radio::Burst> Server::Step(common::Nanos now, std::size_t channel,
                                        std::span<const std::uint8_t> received) {
   const double now_s = common::ToSeconds(now);
-  if (mission_) mission_->Step(now);
+  if (mission_) mission_->Step(now, TakeOffGate());
   std::vector<radio::Burst> bursts = scheduler_->Step(now, channel, received);
   bytes_received_ += received.size();
   for (const radio::Burst& burst : bursts) bytes_sent_ += burst.bytes.size();
@@ -224,7 +221,7 @@ void Server::OnEvent(const radio::SchedulerEvent& event, double now_s) {
   }
   commands_.OnEvent(event);
   if (!mission_) return;
-  mission_->OnEvent(event);
+  mission_->OnEvent(event, TakeOffGate());
   UpdateStartCommand(event);
   for (const std::uint8_t id : mission_->vehicles()) {
     // A new phase, or sorties cut in two (a low-battery return) in the same one.
@@ -289,6 +286,12 @@ std::vector<Eigen::Vector3d> Server::RouteAhead(std::span<const radio::Waypoint>
     route.emplace_back(at.x(), at.y(), sortie[k].altitude_m);
   }
   return route;
+}
+
+StartGate Server::TakeOffGate() {
+  return [this](std::uint8_t vehicle, common::Nanos now) {
+    return ClearToTakeOff(vehicle, common::ToSeconds(now));
+  };
 }
 
 bool Server::ClearToTakeOff(std::uint8_t vehicle, double now_s) {

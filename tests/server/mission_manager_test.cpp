@@ -25,14 +25,15 @@ struct ManagedScheduler {
     scheduler = std::make_unique<radio::ChannelRouter>(std::vector{config});
   }
   std::vector<radio::Burst> Step(Nanos now, std::span<const std::uint8_t> bytes) {
-    manager->Step(now);
+    manager->Step(now, gate);
     std::vector<radio::Burst> bursts = scheduler->Step(now, 0, bytes);
-    for (const radio::SchedulerEvent& event : scheduler->TakeEvents()) manager->OnEvent(event);
+    for (const radio::SchedulerEvent& event : scheduler->TakeEvents()) manager->OnEvent(event, gate);
     return bursts;
   }
   Nanos NextWakeup() const { return std::min(scheduler->NextWakeup(), manager->NextWakeup()); }
   std::unique_ptr<radio::ChannelRouter> scheduler;
   std::unique_ptr<MissionManager> manager;
+  StartGate gate;  // none unless a test sets one
 };
 
 DroneMission Mission(std::uint8_t vehicle, std::size_t waypoints) {
@@ -109,10 +110,10 @@ TEST(MissionManager, AStartTheGateHoldsGoesOutWhenTheGateSaysYes) {
   // Vehicle 3 may go from 20 s on; vehicle 4 at once.
   const Nanos opens = std::chrono::seconds(20);
   std::vector<std::pair<int, Nanos>> asked;
-  server.manager->SetStartGate([&](std::uint8_t vehicle, Nanos now) {
+  server.gate = [&](std::uint8_t vehicle, Nanos now) {
     asked.emplace_back(vehicle, now);
     return vehicle == 4 || now >= opens;
-  });
+  };
   server.manager->Begin();
   const MissionManager& manager = *server.manager;
   air.Run(server, kLimit, [&] { return manager.AllStarted(); });

@@ -129,7 +129,7 @@ struct MissionManagerConfig {
   /// Rounds of resending a chunk whose request failed (each round is itself the
   /// scheduler's max_retries resends) before the drone is given up.
   int chunk_rounds = 3;
-  /// A start the gate holds (MissionManager::SetStartGate) is asked of the gate
+  /// A start the gate holds (StartGate, given to Step and OnEvent) is asked of it
   /// again after this long, seconds.
   double gate_retry_s = 1.0;
 };
@@ -144,22 +144,21 @@ class MissionManager {
   MissionManager(radio::ChannelRouter& scheduler, std::vector<DroneMission> missions,
                  const MissionManagerConfig& config = {});
 
-  /// Every start (each sortie's, a replaced mission's, a retry's) waits until
-  /// `gate` says yes, asked again every gate_retry_s; the drone stays kStarting
-  /// meanwhile (DroneProgress::start_holds counts the refusals). No gate: starts
-  /// go out at once.
-  void SetStartGate(StartGate gate) { start_gate_ = std::move(gate); }
-
   /// Queues every uploading drone's chunks; each drone's start follows its last
   /// chunk's ack.
   void Begin();
 
   /// Feeds one scheduler event (every event may be fed; others are ignored).
-  void OnEvent(const radio::SchedulerEvent& event);
+  /// Every start it sends here or in Step (each sortie's, a replaced mission's,
+  /// a retry's) first asks `gate`: a start the gate holds waits, asked again every
+  /// gate_retry_s; the drone stays kStarting meanwhile (DroneProgress::start_holds
+  /// counts the holds). No gate: starts go out at once. The gate is given per
+  /// call, not kept: what it asks (the server) may have moved since.
+  void OnEvent(const radio::SchedulerEvent& event, const StartGate& gate = {});
 
   /// Asks refused starts again once start_retry_s has passed. Call at least as
   /// often as NextWakeup() says.
-  void Step(common::Nanos now);
+  void Step(common::Nanos now, const StartGate& gate = {});
   /// When Step() must next be called; Nanos::max() when nothing waits.
   common::Nanos NextWakeup() const;
 
@@ -257,8 +256,8 @@ class MissionManager {
   void SendChunk(Drone& drone, std::size_t index);
   // Asks the gate, then sends the start of the drone's sortie (or asks the gate
   // again later).
-  void SendStart(Drone& drone, common::Nanos now);
-  void OnFinished(const radio::RequestFinished& finished);
+  void SendStart(Drone& drone, common::Nanos now, const StartGate& gate);
+  void OnFinished(const radio::RequestFinished& finished, const StartGate& gate);
   void OnTelemetry(const radio::TelemetryReceived& telemetry);
   void Fail(Drone& drone, std::string why);
 
@@ -272,7 +271,6 @@ class MissionManager {
   std::map<radio::RequestId, Pending> pending_;
   std::uint64_t missions_version_ = 0;
   bool sorties_stopped_ = false;
-  StartGate start_gate_;
 };
 
 }  // namespace fireswarm::server

@@ -271,6 +271,9 @@ class Server {
   // clear of the traffic (TrafficControl::ClearToDepart); yes when take-offs are
   // not sequenced or its stand or sortie is not known.
   bool ClearToTakeOff(std::uint8_t vehicle, double now_s);
+  // ClearToTakeOff as the mission's start gate, for one call into the mission
+  // (never kept: a Server may be moved, Restore returns one).
+  StartGate TakeOffGate();
   // The sortie's waypoints from index `from` on (at most kRouteAheadWaypoints),
   // in local metres (east, north, up).
   std::vector<Eigen::Vector3d> RouteAhead(std::span<const radio::Waypoint> sortie,
