@@ -366,7 +366,6 @@ std::vector<Motion> Motions(const std::map<int, TrafficSample>& tracks, const au
   return out;
 }
 
-
 // The box a drone's horizontal path stays in over [0, horizon_s].
 struct Box {
   Eigen::Vector2d low;
@@ -396,6 +395,9 @@ bool Apart(const Box& a, const Box& b, double reach_m) {
 }  // namespace
 
 bool TrafficControl::ClearToDepart(int vehicle, const Departure& departure, double now_s) {
+  if (departure.route_m.empty()) {
+    throw std::invalid_argument("ClearToDepart: a departure needs its waypoints");
+  }
   std::erase_if(departures_, [&](const auto& entry) {
     return entry.second.cleared_s + kDepartureHoldS <= now_s;
   });
@@ -406,9 +408,6 @@ bool TrafficControl::ClearToDepart(int vehicle, const Departure& departure, doub
   // The others: flying as their telemetry says, but those cleared to take off
   // as their departures go (their telemetry shows no way out yet).
   std::vector<Motion> others;
-  if (departure.route_m.empty()) {
-    throw std::invalid_argument("ClearToDepart: a departure needs its waypoints");
-  }
   for (Motion& m : Motions(tracks_, ghosts_, orders_, departures_, now_s, /*follow_routes=*/true)) {
     if (m.vehicle != vehicle) others.push_back(std::move(m));
   }
