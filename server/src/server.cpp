@@ -248,10 +248,11 @@ void Server::WatchTraffic(std::uint8_t vehicle, const radio::Telemetry& telemetr
   sample.at_s = now_s;
   sample.intent_altitude_m = IntentAltitudeM(vehicle, telemetry.mode);
   // On its route (its sortie's, as the vehicle reports it): the waypoints ahead.
-  if (telemetry.mode == radio::FlightMode::kSearch && mission_ &&
-      std::ranges::binary_search(mission_->vehicles(), vehicle)) {
+  const std::span<const radio::Waypoint> sortie =
+      telemetry.mode == radio::FlightMode::kSearch ? SortieFlown(mission(), vehicle)
+                                                   : std::span<const radio::Waypoint>{};
+  if (!sortie.empty()) {  // so the mission has the vehicle
     const DroneProgress& progress = mission_->progress(vehicle);
-    const std::span<const radio::Waypoint> sortie = SortieFlown(mission(), vehicle);
     if (progress.phase == DronePhase::kFlying &&
         telemetry.mission_id == SortieMissionId(mission_->mission_of(vehicle), progress.sortie) &&
         telemetry.waypoint_index < sortie.size()) {
