@@ -335,5 +335,26 @@ TEST(SweepSummaryTest, ThePlotsHoldTheSummarysNumbers) {
   EXPECT_THAT(html, HasSubstr("fleet.count=4"));
 }
 
+// The example sweeps under scenarios/sweeps/ load (and their axes check out).
+TEST(RepositorySweeps, EveryExampleSweepLoads) {
+  fs::path root;
+  for (fs::path dir = fs::path(__FILE__).parent_path(); !dir.empty(); dir = dir.parent_path()) {
+    if (fs::exists(dir / "scenarios" / "sweeps")) {
+      root = dir;
+      break;
+    }
+    if (dir == dir.root_path()) break;
+  }
+  ASSERT_FALSE(root.empty()) << "no scenarios/sweeps above " << __FILE__;
+  int loaded = 0;
+  for (const fs::directory_entry& entry : fs::directory_iterator(root / "scenarios" / "sweeps")) {
+    if (entry.path().extension() != ".yaml") continue;
+    SCOPED_TRACE(entry.path().string());
+    EXPECT_NO_THROW(MakePlan(LoadSweep(entry.path())));
+    ++loaded;
+  }
+  EXPECT_GE(loaded, 1);
+}
+
 }  // namespace
 }  // namespace fireswarm::run
