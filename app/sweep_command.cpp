@@ -320,7 +320,10 @@ bool RunPending(const Flags& f, const run::SweepSpec& spec, const run::SweepPlan
   std::vector<const run::SweepRun*> todo;
   std::size_t recorded = 0;
   for (std::size_t id = first; id < last; ++id) {
-    if (const std::optional<run::RunRecord> record = ReadRecord(out, id)) {
+    const std::optional<run::RunRecord> record = ReadRecord(out, id);
+    // A done run's report is part of its result: without it the run is done again.
+    if (record && (record->status != run::RunStatus::kDone ||
+                   fs::is_regular_file(RunDir(out, id) / "report.json"))) {
       ++recorded;
       if (record->status != run::RunStatus::kDone) all_done = false;
       continue;
