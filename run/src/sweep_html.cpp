@@ -35,11 +35,12 @@ struct Series {
   std::vector<std::pair<double, double>> points;  // data units
 };
 
-// A round upper end for an axis that must reach `max` (1, 2 or 5 times a power of ten).
+// A round upper end for an axis that must reach `max`, whose fifths are round too
+// (1, 1.5, 2, 2.5, 3, 4, 5, 6 or 8 times a power of ten).
 double NiceMax(double max) {
   if (!(max > 0.0)) return 1.0;
   const double power = std::pow(10.0, std::floor(std::log10(max)));
-  for (const double step : {1.0, 2.0, 5.0, 10.0}) {
+  for (const double step : {1.0, 1.5, 2.0, 2.5, 3.0, 4.0, 5.0, 6.0, 8.0}) {
     if (step * power >= max) return step * power;
   }
   return 10.0 * power;
@@ -139,8 +140,8 @@ std::string Seconds(const std::optional<double>& value, int decimals = 0) {
 }
 
 std::string Table(const SweepSummary& summary) {
-  std::string html = "<table>\n<tr><th>combination</th><th>runs</th><th>crashed</th>"
-                     "<th>timed out</th><th>errors</th><th>missing</th>"
+  std::string html = "<table>\n<tr><th>combination</th><th>runs</th>"
+                     "<th>crashed / timed out / errors / missing</th>"
                      "<th>all fires confirmed within " +
                      FixedNumber(summary.confirm_within_s, 0) +
                      " s [95 % CI]</th><th>fires confirmed</th><th>time to confirm p50 / p90 s</th>"
@@ -151,8 +152,8 @@ std::string Table(const SweepSummary& summary) {
   html += "<th>collisions / flight h</th><th>radio busy p50</th></tr>\n";
   for (const GroupSummary& g : summary.groups) {
     html += "<tr><td>" + XmlEscape(g.label, internal::XmlPlace::kText) + "</td><td>" +
-            std::to_string(g.runs) + "</td><td>" + std::to_string(g.crashed) + "</td><td>" +
-            std::to_string(g.timed_out) + "</td><td>" + std::to_string(g.errors) + "</td><td>" +
+            std::to_string(g.runs) + "</td><td>" + std::to_string(g.crashed) + " / " +
+            std::to_string(g.timed_out) + " / " + std::to_string(g.errors) + " / " +
             std::to_string(g.missing) + "</td><td>" + Percent(g.all_confirmed.rate) + " [" +
             Percent(g.all_confirmed.low) + ", " + Percent(g.all_confirmed.high) + "]</td><td>" +
             std::to_string(g.fires_confirmed.successes) + " / " +
@@ -196,7 +197,7 @@ std::string SummaryHtml(const SweepSummary& summary) {
   std::string html =
       "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\"/>\n<title>sweep " +
       XmlEscape(summary.name, internal::XmlPlace::kText) +
-      "</title>\n<style>body{font-family:sans-serif;margin:2em;max-width:1100px}"
+      "</title>\n<style>body{font-family:sans-serif;margin:2em}"
       "table{border-collapse:collapse;font-size:13px}td,th{border:1px solid #ccc;padding:3px 6px;"
       "text-align:right}td:first-child{text-align:left}svg{display:block;margin:1.5em 0}</style>\n"
       "</head>\n<body>\n<h1>sweep " +
