@@ -134,7 +134,8 @@ bool RunChildren(const std::vector<ChildJob>& jobs, int parallel, std::optional<
     auto wait = std::chrono::duration_cast<std::chrono::milliseconds>(kTickPeriod);
     for (const auto& [pid, child] : running) {
       if (!child.deadline || child.killed_for_time) continue;
-      const auto left = std::chrono::ceil<std::chrono::milliseconds>(*child.deadline - Clock::now());
+      const auto left =
+          std::chrono::ceil<std::chrono::milliseconds>(*child.deadline - Clock::now());
       wait = std::max(std::chrono::milliseconds(0), std::min(wait, left));
     }
     pollfd readable{signals.fd(), POLLIN, 0};

@@ -16,20 +16,20 @@
 namespace fireswarm::app {
 
 struct ChildJob {
-  std::vector<std::string> argv;   ///< argv[0] is the executable's path
-  std::filesystem::path output;    ///< stdout and stderr go here (truncated)
+  std::vector<std::string> argv;  ///< argv[0] is the executable's path
+  std::filesystem::path output;   ///< stdout and stderr go here (truncated)
 };
 
 /// How a child ended.
 struct ChildEnd {
-  bool timed_out = false;         ///< killed by the pool over its limit
-  std::optional<int> exit_code;   ///< when it exited
-  std::optional<int> signal;      ///< when a signal ended it
+  bool timed_out = false;        ///< killed by the pool over its limit
+  std::optional<int> exit_code;  ///< when it exited
+  std::optional<int> signal;     ///< when a signal ended it
   double wall_s = 0.0;
 };
 
 struct ChildPoolCallbacks {
-  std::function<void(std::size_t job, pid_t pid)> started;   ///< may be empty
+  std::function<void(std::size_t job, pid_t pid)> started;  ///< may be empty
   std::function<void(std::size_t job, const ChildEnd&)> ended;
   std::function<void()> tick;  ///< about every 200 ms and after each end; may be empty
 };

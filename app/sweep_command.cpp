@@ -16,13 +16,12 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "child_pool.hpp"
 #include "cli.hpp"
@@ -136,13 +135,15 @@ run::RunRecord MakeRecord(const run::SweepRun& sweep_run, const ChildEnd& end, c
 class Progress {
  public:
   Progress(std::size_t total, std::size_t recorded)
-      : total_(total), finished_(recorded), tty_(isatty(STDERR_FILENO) != 0),
+      : total_(total),
+        finished_(recorded),
+        tty_(isatty(STDERR_FILENO) != 0),
         start_(std::chrono::steady_clock::now()) {}
 
   void Started(const run::SweepRun& r, pid_t pid) {
     ++running_;
-    if (!tty_) std::cout << "run " << run::RunName(r.id) << " started (pid " << pid << ")\n"
-                         << std::flush;
+    if (!tty_)
+      std::cout << "run " << run::RunName(r.id) << " started (pid " << pid << ")\n" << std::flush;
   }
   void Ended(const run::RunRecord& record) {
     --running_;
@@ -151,8 +152,8 @@ class Progress {
     if (record.status != run::RunStatus::kDone) ++failed_;
     if (!tty_) {
       std::cout << "run " << run::RunName(record.id) << " " << run::ToString(record.status)
-                << (record.detail.empty() ? "" : ": " + record.detail) << " [" << finished_
-                << "/" << total_ << "]\n"
+                << (record.detail.empty() ? "" : ": " + record.detail) << " [" << finished_ << "/"
+                << total_ << "]\n"
                 << std::flush;
     }
     Draw(true);
@@ -162,13 +163,16 @@ class Progress {
     const auto now = std::chrono::steady_clock::now();
     if (!force && now - drawn_ < kRedrawPeriod) return;
     drawn_ = now;
-    const double fraction = total_ > 0 ? static_cast<double>(finished_) / static_cast<double>(total_) : 1.0;
+    const double fraction =
+        total_ > 0 ? static_cast<double>(finished_) / static_cast<double>(total_) : 1.0;
     const int filled = static_cast<int>(fraction * kBarWidth);
     const double elapsed_s = std::chrono::duration<double>(now - start_).count();
     const std::size_t left = total_ - finished_;
     const double eta_s =
-        done_now_ > 0 ? elapsed_s / static_cast<double>(done_now_) * static_cast<double>(left) : 0.0;
-    std::fprintf(stderr, "\r[%s%s] %zu / %zu runs, %zu running, %zu not done, %.0f s, ~%.0f s left ",
+        done_now_ > 0 ? elapsed_s / static_cast<double>(done_now_) * static_cast<double>(left)
+                      : 0.0;
+    std::fprintf(stderr,
+                 "\r[%s%s] %zu / %zu runs, %zu running, %zu not done, %.0f s, ~%.0f s left ",
                  std::string(static_cast<std::size_t>(filled), '#').c_str(),
                  std::string(static_cast<std::size_t>(kBarWidth - filled), '.').c_str(), finished_,
                  total_, running_, failed_, elapsed_s, eta_s);
@@ -246,23 +250,34 @@ int EmitSlurm(const Flags& f, const run::SweepPlan& plan) {
   if (f.timeout_s) command += " --timeout " + FlagText(*f.timeout_s);
   const std::string script =
       "#!/bin/bash\n"
-      "# fireswarm sweep '" + plan.name + "': " + std::to_string(runs) + " runs in " +
-      std::to_string(chunks) +
+      "# fireswarm sweep '" +
+      plan.name + "': " + std::to_string(runs) + " runs in " + std::to_string(chunks) +
       " array tasks. The binary, the sweep and scenario files and this directory must be\n"
       "# at the same paths on every node (a shared file system). Submit, then collect:\n"
-      "#   sbatch " + ShellQuote((out / "sweep.sbatch").string()) + "\n"
-      "#   fireswarm sweep --collect " + ShellQuote(out.string()) + "\n"
+      "#   sbatch " +
+      ShellQuote((out / "sweep.sbatch").string()) +
+      "\n"
+      "#   fireswarm sweep --collect " +
+      ShellQuote(out.string()) +
+      "\n"
       "# Options given to sbatch (--partition, --time, --account, ...) override these.\n"
       "#SBATCH --job-name=fireswarm-sweep\n"
-      "#SBATCH --array=0-" + std::to_string(chunks - 1) + "\n"
+      "#SBATCH --array=0-" +
+      std::to_string(chunks - 1) +
+      "\n"
       "#SBATCH --ntasks=1\n"
-      "#SBATCH --cpus-per-task=" + std::to_string(jobs) + "\n"
-      "#SBATCH --output=" + (out / "slurm" / "%A_%a.out").string() + "\n"
+      "#SBATCH --cpus-per-task=" +
+      std::to_string(jobs) +
+      "\n"
+      "#SBATCH --output=" +
+      (out / "slurm" / "%A_%a.out").string() +
+      "\n"
       "set -eu\n"
-      "exec " + command + "\n";
+      "exec " +
+      command + "\n";
   common::WriteFileAtomically(out / "sweep.sbatch", script, 0755);
-  std::cout << "fireswarm sweep: " << runs << " runs in " << chunks << " Slurm array tasks: "
-            << (out / "sweep.sbatch").string() << "\n  submit:  sbatch "
+  std::cout << "fireswarm sweep: " << runs << " runs in " << chunks
+            << " Slurm array tasks: " << (out / "sweep.sbatch").string() << "\n  submit:  sbatch "
             << (out / "sweep.sbatch").string() << "\n  then:    fireswarm sweep --collect "
             << out.string() << "\n";
   return kExitOk;
@@ -330,12 +345,13 @@ bool RunPending(const Flags& f, const run::SweepSpec& spec, const run::SweepPlan
     }
     todo.push_back(&plan.runs[id]);
   }
-  const int parallel = f.jobs.value_or(static_cast<int>(std::max(1U, std::thread::hardware_concurrency())));
+  const int parallel =
+      f.jobs.value_or(static_cast<int>(std::max(1U, std::thread::hardware_concurrency())));
   std::cout << "fireswarm sweep: " << spec.name << ": " << (last - first) << " runs"
             << (f.chunk ? " in chunk " + std::to_string(chunk) + " of " + std::to_string(chunks)
                         : std::string())
-            << ", " << recorded << " already recorded, " << todo.size() << " to run on "
-            << parallel << " jobs\n"
+            << ", " << recorded << " already recorded, " << todo.size() << " to run on " << parallel
+            << " jobs\n"
             << std::flush;
   const std::string exe = SelfExe().string();
   std::vector<ChildJob> jobs;
@@ -344,9 +360,9 @@ bool RunPending(const Flags& f, const run::SweepSpec& spec, const run::SweepPlan
     fs::create_directories(dir);
     fs::remove(dir / "report.json");  // a killed attempt's, if any
     common::WriteFileAtomically(dir / "scenario.yaml", run::RunScenarioYaml(spec, *r));
-    jobs.push_back({{exe, "run", (dir / "scenario.yaml").string(), "--report",
-                     (dir / "report.json").string()},
-                    dir / "output.txt"});
+    jobs.push_back(
+        {{exe, "run", (dir / "scenario.yaml").string(), "--report", (dir / "report.json").string()},
+         dir / "output.txt"});
   }
   Progress progress(last - first, recorded);
   ChildPoolCallbacks callbacks;
@@ -367,17 +383,21 @@ bool RunPending(const Flags& f, const run::SweepSpec& spec, const run::SweepPlan
 
 void CheckFlags(const Flags& f, const po::variables_map& values) {
   if (f.jobs) CheckFlagRange(kName, "jobs", *f.jobs, {1, kMaxJobs});
-  if (f.timeout_s) CheckFlagRange(kName, "timeout", *f.timeout_s, {0.0, kMaxCommandDurationS, true});
-  if (f.chunks) CheckFlagRange(kName, "chunks", *f.chunks, {1, static_cast<double>(run::kMaxSweepRuns)});
+  if (f.timeout_s)
+    CheckFlagRange(kName, "timeout", *f.timeout_s, {0.0, kMaxCommandDurationS, true});
+  if (f.chunks)
+    CheckFlagRange(kName, "chunks", *f.chunks, {1, static_cast<double>(run::kMaxSweepRuns)});
   if (f.chunk && !f.chunks) throw UsageError("fireswarm sweep: --chunk needs --chunks");
   if (f.chunk) CheckFlagRange(kName, "chunk", *f.chunk, {0, static_cast<double>(*f.chunks - 1)});
   if (values.count("emit") != 0 && f.emit != "slurm") {
     ThrowBadFlag(kName, "emit", "slurm", f.emit);
   }
-  if (!f.emit.empty() && f.chunk) throw UsageError("fireswarm sweep: --emit and --chunk exclude each other");
+  if (!f.emit.empty() && f.chunk)
+    throw UsageError("fireswarm sweep: --emit and --chunk exclude each other");
   if (!f.collect.empty()) {
     if (!f.sweep.empty() || !f.out.empty() || !f.emit.empty() || f.chunk) {
-      throw UsageError("fireswarm sweep: --collect DIR takes no sweep file, --out, --emit or --chunk");
+      throw UsageError(
+          "fireswarm sweep: --collect DIR takes no sweep file, --out, --emit or --chunk");
     }
     return;
   }
@@ -398,7 +418,8 @@ int RunSweep(const std::vector<std::string>& args) {
       "the sweep's directory: plan, runs/<id>/ (scenario, report, record, output), summary");
   add("jobs", po::value<int>()->notifier([&f](int v) { f.jobs = v; })->value_name("N"),
       "runs at once (default: every core; with --emit slurm: CPUs per array task, default 1)");
-  add("timeout", po::value<double>()->notifier([&f](double v) { f.timeout_s = v; })->value_name("S"),
+  add("timeout",
+      po::value<double>()->notifier([&f](double v) { f.timeout_s = v; })->value_name("S"),
       "kill a run after S wall seconds and record it as timed out");
   add("emit", po::value(&f.emit)->value_name("slurm"),
       "write DIR/sweep.sbatch, a Slurm job-array script, instead of running");

@@ -189,8 +189,7 @@ double CheckCombinations(const Field& axes_field, const SweepSpec& spec) {
 }
 
 void ReadSummaryOptions(const Mapping& root, const Scenario& base, SweepSpec& spec) {
-  spec.confirm_within_s =
-      base.expect.all_fires_confirmed_within_s.value_or(base.duration_s);
+  spec.confirm_within_s = base.expect.all_fires_confirmed_within_s.value_or(base.duration_s);
   for (int quarter = 1; quarter <= 4; ++quarter) {
     spec.coverage_at_s.push_back(spec.duration_s * quarter / 4.0);
   }

@@ -69,7 +69,8 @@ std::string Plot(const std::string& id, const std::string& title, const std::str
                     " " + FixedNumber(height, 0) + "\" data-x-max=\"" + NumberText(x_max) +
                     "\" font-family=\"sans-serif\" font-size=\"11\">\n";
   svg += "<title>" + XmlEscape(title, internal::XmlPlace::kText) + "</title>\n";
-  svg += "<text x=\"" + FixedNumber(kLeft, 0) + "\" y=\"16\" font-size=\"13\" font-weight=\"bold\">" +
+  svg += "<text x=\"" + FixedNumber(kLeft, 0) +
+         "\" y=\"16\" font-size=\"13\" font-weight=\"bold\">" +
          XmlEscape(title, internal::XmlPlace::kText) + "</text>\n";
   const double x0 = kLeft;
   const double y0 = kTop + inner_h;
@@ -83,15 +84,15 @@ std::string Plot(const std::string& id, const std::string& title, const std::str
            FixedNumber(x0 + inner_w, 1) + "\" y2=\"" + gy + "\" stroke=\"#ddd\"/>\n";
     svg += "<text x=\"" + gx + "\" y=\"" + FixedNumber(y0 + 14.0, 1) +
            "\" text-anchor=\"middle\">" + internal::ShortNumber(f * x_max, 4) + "</text>\n";
-    svg += "<text x=\"" + FixedNumber(x0 - 6.0, 1) + "\" y=\"" + FixedNumber(y0 - f * inner_h + 4.0, 1) +
-           "\" text-anchor=\"end\">" + internal::ShortNumber(f, 2) + "</text>\n";
+    svg += "<text x=\"" + FixedNumber(x0 - 6.0, 1) + "\" y=\"" +
+           FixedNumber(y0 - f * inner_h + 4.0, 1) + "\" text-anchor=\"end\">" +
+           internal::ShortNumber(f, 2) + "</text>\n";
   }
   svg += "<rect x=\"" + FixedNumber(x0, 1) + "\" y=\"" + FixedNumber(kTop, 1) + "\" width=\"" +
          FixedNumber(inner_w, 1) + "\" height=\"" + FixedNumber(inner_h, 1) +
          "\" fill=\"none\" stroke=\"#444\"/>\n";
-  svg += "<text x=\"" + FixedNumber(x0 + inner_w / 2.0, 1) + "\" y=\"" +
-         FixedNumber(y0 + 32.0, 1) + "\" text-anchor=\"middle\">" +
-         XmlEscape(x_title, internal::XmlPlace::kText) + "</text>\n";
+  svg += "<text x=\"" + FixedNumber(x0 + inner_w / 2.0, 1) + "\" y=\"" + FixedNumber(y0 + 32.0, 1) +
+         "\" text-anchor=\"middle\">" + XmlEscape(x_title, internal::XmlPlace::kText) + "</text>\n";
   svg += "<text transform=\"translate(14," + FixedNumber(kTop + inner_h / 2.0, 1) +
          ") rotate(-90)\" text-anchor=\"middle\">" + XmlEscape(y_title, internal::XmlPlace::kText) +
          "</text>\n";
@@ -113,8 +114,8 @@ std::string Plot(const std::string& id, const std::string& title, const std::str
            FixedNumber(x0 + 24.0, 1) + "\" y2=\"" + FixedNumber(y, 1) + "\" stroke=\"" +
            std::string(kColours[s % kColours.size()]) + "\" stroke-width=\"2\"/>\n";
     svg += "<text class=\"legend\" x=\"" + FixedNumber(x0 + 30.0, 1) + "\" y=\"" +
-           FixedNumber(y + 4.0, 1) + "\">" +
-           XmlEscape(series[s].label, internal::XmlPlace::kText) + "</text>\n";
+           FixedNumber(y + 4.0, 1) + "\">" + XmlEscape(series[s].label, internal::XmlPlace::kText) +
+           "</text>\n";
   }
   svg += "</svg>\n";
   return svg;
@@ -140,12 +141,13 @@ std::string Seconds(const std::optional<double>& value, int decimals = 0) {
 }
 
 std::string Table(const SweepSummary& summary) {
-  std::string html = "<table>\n<tr><th>combination</th><th>runs</th>"
-                     "<th>crashed / timed out / errors / missing</th>"
-                     "<th>all fires confirmed within " +
-                     FixedNumber(summary.confirm_within_s, 0) +
-                     " s [95 % CI]</th><th>fires confirmed</th><th>time to confirm p50 / p90 s</th>"
-                     "<th>fused error p50 / p90 m</th>";
+  std::string html =
+      "<table>\n<tr><th>combination</th><th>runs</th>"
+      "<th>crashed / timed out / errors / missing</th>"
+      "<th>all fires confirmed within " +
+      FixedNumber(summary.confirm_within_s, 0) +
+      " s [95 % CI]</th><th>fires confirmed</th><th>time to confirm p50 / p90 s</th>"
+      "<th>fused error p50 / p90 m</th>";
   for (const double t_s : summary.coverage_at_s) {
     html += "<th>coverage p50 at " + FixedNumber(t_s, 0) + " s</th>";
   }
@@ -165,11 +167,11 @@ std::string Table(const SweepSummary& summary) {
     for (const std::vector<double>& at : g.coverage_at) {
       html += "<td>" + Percent(Percentile(at, 0.5)) + "</td>";
     }
-    html += "<td>" +
-            (g.flight_hours > 0.0
-                 ? FixedNumber(static_cast<double>(g.collisions) / g.flight_hours, 3)
-                 : std::string("&#8211;")) +
-            "</td><td>" + Percent(Percentile(g.radio_busy_fraction, 0.5)) + "</td></tr>\n";
+    html +=
+        "<td>" +
+        (g.flight_hours > 0.0 ? FixedNumber(static_cast<double>(g.collisions) / g.flight_hours, 3)
+                              : std::string("&#8211;")) +
+        "</td><td>" + Percent(Percentile(g.radio_busy_fraction, 0.5)) + "</td></tr>\n";
   }
   return html + "</table>\n";
 }
@@ -183,14 +185,17 @@ std::string SummaryHtml(const SweepSummary& summary) {
   double confirm_max = 0.0;
   double error_max = 0.0;
   for (const GroupSummary& g : summary.groups) {
-    confirm.push_back({g.label, Cdf(g.time_to_confirm_s, std::max<std::size_t>(1, g.fires_confirmed.trials))});
-    error.push_back({g.label, Cdf(g.fused_error_m, std::max<std::size_t>(1, g.fused_error_m.size()))});
+    confirm.push_back(
+        {g.label, Cdf(g.time_to_confirm_s, std::max<std::size_t>(1, g.fires_confirmed.trials))});
+    error.push_back(
+        {g.label, Cdf(g.fused_error_m, std::max<std::size_t>(1, g.fused_error_m.size()))});
     Series curve{g.label, {}};
     for (std::size_t k = 0; k < summary.curve_t_s.size() && k < g.coverage_curve.size(); ++k) {
       curve.points.emplace_back(summary.curve_t_s[k], g.coverage_curve[k]);
     }
     coverage.push_back(std::move(curve));
-    if (!g.time_to_confirm_s.empty()) confirm_max = std::max(confirm_max, g.time_to_confirm_s.back());
+    if (!g.time_to_confirm_s.empty())
+      confirm_max = std::max(confirm_max, g.time_to_confirm_s.back());
     if (!g.fused_error_m.empty()) error_max = std::max(error_max, g.fused_error_m.back());
   }
   const double duration_s = summary.curve_t_s.empty() ? 1.0 : summary.curve_t_s.back();

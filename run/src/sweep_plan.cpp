@@ -29,7 +29,8 @@ nlohmann::ordered_json ToJson(const SweepPlan& plan) {
 SweepPlan PlanFromJson(const nlohmann::json& json) {
   try {
     if (json.at("format") != "fireswarm-sweep-plan-1") {
-      throw std::runtime_error("not a fireswarm sweep plan (format " + json.at("format").dump() + ")");
+      throw std::runtime_error("not a fireswarm sweep plan (format " + json.at("format").dump() +
+                               ")");
     }
     SweepPlan plan;
     plan.name = json.at("name").get<std::string>();

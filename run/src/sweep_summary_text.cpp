@@ -88,7 +88,7 @@ nlohmann::ordered_json ToJson(const SweepSummary& summary) {
   j["axes"] = summary.axes;
   j["confirm_within_s"] = summary.confirm_within_s;
   j["coverage_at_s"] = summary.coverage_at_s;
-  j["runs"] = {{"total", summary.runs},     {"done", summary.done},
+  j["runs"] = {{"total", summary.runs},      {"done", summary.done},
                {"crashed", summary.crashed}, {"timed_out", summary.timed_out},
                {"errors", summary.errors},   {"missing", summary.missing.size()}};
   j["missing_runs"] = summary.missing;
@@ -102,8 +102,9 @@ nlohmann::ordered_json ToJson(const SweepSummary& summary) {
       values[summary.axes[a]] = AxisValue(group.values[a]);
     }
     g["axes"] = summary.axes.empty() ? Json::object() : values;
-    g["runs"] = {{"total", group.runs},     {"done", group.done},     {"crashed", group.crashed},
-                 {"timed_out", group.timed_out}, {"errors", group.errors}, {"missing", group.missing}};
+    g["runs"] = {{"total", group.runs},      {"done", group.done},
+                 {"crashed", group.crashed}, {"timed_out", group.timed_out},
+                 {"errors", group.errors},   {"missing", group.missing}};
     g["expectations_hold"] = RateJson(group.expectations_hold);
     g["all_fires_confirmed_within"] = RateJson(group.all_confirmed);
     g["fires_confirmed"] = RateJson(group.fires_confirmed);

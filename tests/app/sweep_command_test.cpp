@@ -98,8 +98,8 @@ TEST_F(SweepCommandTest, TheSummaryIsTheSameFromOneJobTwoJobsAndTheSlurmChunks) 
   EXPECT_EQ(summary["runs"]["done"], 4);
 
   // The Slurm path without Slurm: the emitted script run once per array task.
-  const RunResult emit = RunFireswarm("sweep " + sweep + " --out " + PathOf("slurm") +
-                                      " --emit slurm --chunks 2");
+  const RunResult emit =
+      RunFireswarm("sweep " + sweep + " --out " + PathOf("slurm") + " --emit slurm --chunks 2");
   ASSERT_EQ(emit.exit_code, 0) << Output(emit);
   const std::string script = FileText(dir_ / "slurm" / "sweep.sbatch");
   EXPECT_THAT(script, HasSubstr("#SBATCH --array=0-1\n"));
@@ -175,14 +175,16 @@ TEST_F(SweepCommandTest, ASweepKilledOutrightResumesWithoutRedoingARecordedRun) 
   const std::string first_record = FileText(dir_ / "out" / "runs" / "00000" / "record.json");
   ASSERT_FALSE(first_record.empty());
   EXPECT_FALSE(fs::exists(dir_ / "out" / "summary.json"));
-  const RunResult resumed = RunFireswarm("sweep " + sweep + " --out " + PathOf("out") + " --jobs 2");
+  const RunResult resumed =
+      RunFireswarm("sweep " + sweep + " --out " + PathOf("out") + " --jobs 2");
   ASSERT_EQ(resumed.exit_code, 0) << Output(resumed);
   EXPECT_FALSE(Mentions(resumed, "run 00000 started")) << Output(resumed);
   EXPECT_TRUE(Mentions(resumed, "run 00003 started")) << Output(resumed);
   // Not done twice: the record (its wall time too) is the first attempt's.
   EXPECT_EQ(FileText(dir_ / "out" / "runs" / "00000" / "record.json"), first_record);
   // Nothing lost: the summary is an uninterrupted sweep's.
-  const RunResult fresh = RunFireswarm("sweep " + sweep + " --out " + PathOf("fresh") + " --jobs 2");
+  const RunResult fresh =
+      RunFireswarm("sweep " + sweep + " --out " + PathOf("fresh") + " --jobs 2");
   ASSERT_EQ(fresh.exit_code, 0) << Output(fresh);
   EXPECT_EQ(Summaries(dir_ / "out"), Summaries(dir_ / "fresh"));
 }
@@ -201,14 +203,16 @@ TEST_F(SweepCommandTest, BadInputExitsTwoNamingTheProblem) {
         sweep + " --out " + PathOf("o") + " --emit pbs",
         sweep + " --out " + PathOf("o") + " --chunk 1",
         sweep + " --out " + PathOf("o") + " --chunk 2 --chunks 2",
-        sweep + " --out " + PathOf("o") + " --timeout -1", std::string("--collect ") + PathOf("nothing"),
-        "--collect " + PathOf("o") + " " + sweep}) {
+        sweep + " --out " + PathOf("o") + " --timeout -1",
+        std::string("--collect ") + PathOf("nothing"), "--collect " + PathOf("o") + " " + sweep}) {
     const RunResult result = RunFireswarm("sweep " + args);
     EXPECT_EQ(result.exit_code, 2) << args << "\n" << Output(result);
   }
   // A directory holding another sweep's runs is refused.
-  ASSERT_EQ(RunFireswarm("sweep " + sweep + " --out " + PathOf("o") + " --emit slurm").exit_code, 0);
-  const RunResult other = RunFireswarm("sweep " + WriteSweep(2, "other.yaml") + " --out " + PathOf("o"));
+  ASSERT_EQ(RunFireswarm("sweep " + sweep + " --out " + PathOf("o") + " --emit slurm").exit_code,
+            0);
+  const RunResult other =
+      RunFireswarm("sweep " + WriteSweep(2, "other.yaml") + " --out " + PathOf("o"));
   EXPECT_EQ(other.exit_code, 2);
   EXPECT_TRUE(Mentions(other, "holds the runs of another sweep")) << Output(other);
   // --collect names the runs still missing.

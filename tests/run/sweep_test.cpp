@@ -75,8 +75,9 @@ TEST_F(SweepTest, ABadAxisKeyNamesTheFileLineAndKey) {
   EXPECT_THAT(ErrorOf("scenario: base.yaml\naxes:\n  fleet_count: [1]\n"),
               StartsWith("sweep.yaml:3:3: axes.fleet_count: not a scenario key: "));
   // Through a list: the scenario's `fires` is not a mapping.
-  EXPECT_THAT(ErrorOf("scenario: base.yaml\naxes:\n  fires.lat: [45]\n"),
-              StartsWith("sweep.yaml:3:3: axes.fires.lat: not a scenario key: fires: is not a mapping"));
+  EXPECT_THAT(
+      ErrorOf("scenario: base.yaml\naxes:\n  fires.lat: [45]\n"),
+      StartsWith("sweep.yaml:3:3: axes.fires.lat: not a scenario key: fires: is not a mapping"));
 }
 
 TEST_F(SweepTest, AValueTheScenarioRefusesNamesItsLine) {
@@ -152,8 +153,8 @@ TEST_F(SweepTest, RelativeGeoJsonPathsBecomeAbsoluteInARunsScenario) {
   const SweepSpec spec = Parse("scenario: geo.yaml\nseeds: [5]\n");
   const SweepPlan plan = MakePlan(spec);
   ASSERT_EQ(plan.runs.size(), 1U);
-  const Scenario scenario = ParseScenario(RunScenarioYaml(spec, plan.runs[0]), "elsewhere.yaml",
-                                          "/nonexistent");
+  const Scenario scenario =
+      ParseScenario(RunScenarioYaml(spec, plan.runs[0]), "elsewhere.yaml", "/nonexistent");
   ASSERT_TRUE(scenario.area_geojson.has_value());
   EXPECT_EQ(*scenario.area_geojson, (dir_ / "area.geojson").lexically_normal());
   EXPECT_EQ(scenario.seed, 5U);
@@ -165,8 +166,8 @@ TEST_F(SweepTest, SummaryOptionsDefaultToTheScenarios) {
   EXPECT_DOUBLE_EQ(spec.duration_s, 80.0);
   EXPECT_EQ(spec.coverage_at_s, (std::vector<double>{20.0, 40.0, 60.0, 80.0}));
   EXPECT_EQ(spec.seeds, (std::vector<std::uint64_t>{3}));
-  const SweepSpec given = Parse(
-      "scenario: base.yaml\nsummary: {confirm_within_s: 30, coverage_at_s: [10, 50]}\n");
+  const SweepSpec given =
+      Parse("scenario: base.yaml\nsummary: {confirm_within_s: 30, coverage_at_s: [10, 50]}\n");
   EXPECT_DOUBLE_EQ(given.confirm_within_s, 30.0);
   EXPECT_EQ(given.coverage_at_s, (std::vector<double>{10.0, 50.0}));
 }
@@ -207,8 +208,10 @@ nlohmann::json Report(const std::vector<std::optional<double>>& confirmed_s, dou
           {"min_separation_m", 25.0},
           {"false_tracks", nlohmann::json::array()},
           {"radio",
-           {{"busy_fraction", 0.5}, {"report_latency_s", {{"p50", 0.2}, {"p99", 0.9}}},
-            {"retries", 3}, {"reports_lost", 1}}}};
+           {{"busy_fraction", 0.5},
+            {"report_latency_s", {{"p50", 0.2}, {"p99", 0.9}}},
+            {"retries", 3},
+            {"reports_lost", 1}}}};
 }
 
 SweepPlan TwoByTwoPlan() {
@@ -237,7 +240,7 @@ TEST(SweepSummaryTest, CountsRatesAndDistributionsPerCombination) {
   crashed.status = RunStatus::kCrashed;
   crashed.signal = 9;
   const std::vector<RunFiles> files{
-      Done(0, 0, Report({30.0, 45.0}, 0.8, 0)),    // one fire 35 s after ignition: not within 40
+      Done(0, 0, Report({30.0, 45.0}, 0.8, 0)),  // one fire 35 s after ignition: not within 40
       Done(1, 1, Report({20.0, std::nullopt}, 0.6, 1)),
       {crashed, std::nullopt},
       {std::nullopt, std::nullopt}};  // missing
@@ -283,7 +286,8 @@ TEST(SweepSummaryTest, CountsRatesAndDistributionsPerCombination) {
 // The points of the polyline labelled `label` in the plot `id` of `html`.
 std::vector<std::pair<double, double>> PlotPoints(const std::string& html, const std::string& id,
                                                   const std::string& label) {
-  const std::size_t start = html.find("<svg xmlns=\"http://www.w3.org/2000/svg\" class=\"plot\" id=\"" + id + "\"");
+  const std::size_t start =
+      html.find("<svg xmlns=\"http://www.w3.org/2000/svg\" class=\"plot\" id=\"" + id + "\"");
   EXPECT_NE(start, std::string::npos) << id;
   if (start == std::string::npos) return {};
   const std::size_t end = html.find("</svg>", start) + 6;
@@ -315,8 +319,9 @@ TEST(SweepSummaryTest, ThePlotsHoldTheSummarysNumbers) {
     ASSERT_EQ(cdf.size(), 2 * group.time_to_confirm_s.size()) << group.label;
     for (std::size_t i = 0; i < group.time_to_confirm_s.size(); ++i) {
       EXPECT_EQ(cdf[2 * i + 1].first, group.time_to_confirm_s[i]);
-      EXPECT_DOUBLE_EQ(cdf[2 * i + 1].second, static_cast<double>(i + 1) /
-                                                  static_cast<double>(group.fires_confirmed.trials));
+      EXPECT_DOUBLE_EQ(
+          cdf[2 * i + 1].second,
+          static_cast<double>(i + 1) / static_cast<double>(group.fires_confirmed.trials));
     }
     const auto error = PlotPoints(html, "fused_error_cdf", group.label);
     ASSERT_EQ(error.size(), 2 * group.fused_error_m.size());

@@ -6,11 +6,10 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <string_view>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 namespace fireswarm::run {
 
@@ -27,9 +26,10 @@ struct SweepAxis {
 struct SweepSpec {
   std::string source;  ///< the file name errors carry
   std::string name;    ///< defaults to the file's stem
-  std::filesystem::path scenario_path;  ///< the base scenario, resolved against the sweep's directory
-  std::string scenario_text;            ///< the base scenario's YAML
-  std::vector<std::uint64_t> seeds;     ///< each combination runs once per seed, in this order
+  std::filesystem::path
+      scenario_path;                 ///< the base scenario, resolved against the sweep's directory
+  std::string scenario_text;         ///< the base scenario's YAML
+  std::vector<std::uint64_t> seeds;  ///< each combination runs once per seed, in this order
   std::vector<SweepAxis> axes;
   /// "Every fire confirmed within T of its ignition", s: the summary's success
   /// rate. Default: the base scenario's expect.all_fires_confirmed_within_s, else

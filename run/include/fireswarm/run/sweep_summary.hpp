@@ -6,12 +6,11 @@
 #pragma once
 
 #include <cstdint>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "fireswarm/run/sweep.hpp"
 
@@ -83,10 +82,10 @@ struct GroupSummary {
   std::vector<double> coverage_curve;  ///< mean coverage at SweepSummary::curve_t_s
   std::size_t collisions = 0;
   Rate runs_with_collision;
-  double flight_hours = 0.0;  ///< summed airborne time of every vehicle
+  double flight_hours = 0.0;             ///< summed airborne time of every vehicle
   std::vector<double> min_separation_m;  ///< per done run where measured, ascending
   std::size_t false_tracks = 0;
-  std::vector<double> radio_busy_fraction;  ///< per done run, ascending
+  std::vector<double> radio_busy_fraction;   ///< per done run, ascending
   std::vector<double> report_latency_p50_s;  ///< per done run where measured, ascending
   std::uint64_t retries = 0;
   std::uint64_t reports_lost = 0;
