@@ -8,9 +8,7 @@
 
 #include <algorithm>
 #include <cctype>
-#include <fstream>
 #include <optional>
-#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -26,24 +24,6 @@ namespace fs = std::filesystem;
 using internal::Field;
 using internal::Mapping;
 using internal::Range;
-
-YAML::Node LoadSweepYaml(std::string_view text, const std::string& source_name) {
-  try {
-    return YAML::Load(std::string(text));
-  } catch (const YAML::Exception& e) {
-    throw ScenarioError(internal::Where(source_name, e.mark) + "malformed YAML: " + e.msg);
-  }
-}
-
-std::string ReadText(const fs::path& path, const std::string& what) {
-  if (fs::is_directory(path)) throw ScenarioError(path.string() + ": is a directory, not " + what);
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw ScenarioError(path.string() + ": cannot open " + what);
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw ScenarioError(path.string() + ": cannot read " + what);
-  return text.str();
-}
 
 std::vector<std::uint64_t> ReadSeeds(const Field& field) {
   std::vector<std::uint64_t> seeds;
@@ -215,7 +195,7 @@ void ReadSummaryOptions(const Mapping& root, const Scenario& base, SweepSpec& sp
 
 SweepSpec ParseSweep(std::string_view text, const std::string& source_name,
                      const std::filesystem::path& base_dir) {
-  const YAML::Node document = LoadSweepYaml(text, source_name);
+  const YAML::Node document = internal::LoadYaml(text, source_name);
   if (!document.IsMap()) {
     throw ScenarioError(source_name +
                         ": the sweep must be a YAML mapping of keys (scenario, seeds, axes, ...)");
@@ -232,7 +212,7 @@ SweepSpec ParseSweep(std::string_view text, const std::string& source_name,
   spec.scenario_path = (given.is_absolute() ? given : base_dir / given).lexically_normal();
   std::optional<Scenario> base;
   try {
-    spec.scenario_text = ReadText(spec.scenario_path, "the base scenario");
+    spec.scenario_text = internal::ReadConfigFile(spec.scenario_path, "scenario file");
     base = ParseScenario(spec.scenario_text, spec.scenario_path.string(),
                          spec.scenario_path.parent_path());
   } catch (const ScenarioError& e) {
@@ -264,7 +244,8 @@ SweepSpec ParseSweep(std::string_view text, const std::string& source_name,
 }
 
 SweepSpec LoadSweep(const std::filesystem::path& path) {
-  return ParseSweep(ReadText(path, "a sweep file"), path.string(), path.parent_path());
+  return ParseSweep(internal::ReadConfigFile(path, "sweep file"), path.string(),
+                    path.parent_path());
 }
 
 SweepPlan MakePlan(const SweepSpec& spec) {
