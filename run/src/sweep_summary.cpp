@@ -11,28 +11,26 @@
 namespace fireswarm::run {
 namespace {
 
-using Json = nlohmann::json;
-
 /// z for a two-sided 95 % interval.
 constexpr double kZ95 = 1.959963984540054;
 /// Points of the coverage-against-time curve, 0 .. duration_s.
 constexpr std::size_t kCurvePoints = 61;
-constexpr double kSecondsPerHour = 3'600.0;
+constexpr double kSecondsPerFlightHour = 3'600.0;
 
 constexpr std::array<std::string_view, 4> kStatusNames{"done", "crashed", "timed_out", "error"};
 
 // The coverage a run had reached at `t_s`: its latest sample at or before it
 // (a run that stopped earlier keeps its final coverage).
-double CoverageAt(const Json& series, double t_s) {
+double CoverageAt(const nlohmann::json& series, double t_s) {
   double fraction = 0.0;
-  for (const Json& sample : series) {
+  for (const nlohmann::json& sample : series) {
     if (sample.at(0).is_null() || sample.at(0).get<double>() > t_s) break;
     if (!sample.at(1).is_null()) fraction = sample.at(1).get<double>();
   }
   return fraction;
 }
 
-std::optional<double> OptionalNumber(const Json& value) {
+std::optional<double> OptionalNumber(const nlohmann::json& value) {
   if (value.is_null()) return std::nullopt;
   return value.get<double>();
 }
@@ -57,10 +55,10 @@ struct Counts {
 };
 
 void AddReport(const SweepPlan& plan, const SweepSummary& summary, const RunRecord& record,
-               const Json& report, GroupSummary& group, Counts& counts) {
+               const nlohmann::json& report, GroupSummary& group, Counts& counts) {
   counts.expectations_hold += record.exit_code == 0 ? 1U : 0U;
   bool all_within = true;
-  for (const Json& fire : report.at("fires")) {
+  for (const nlohmann::json& fire : report.at("fires")) {
     ++counts.fires;
     const std::optional<double> confirmed_s = OptionalNumber(fire.at("confirmed_s"));
     if (!confirmed_s) {
@@ -76,7 +74,7 @@ void AddReport(const SweepPlan& plan, const SweepSummary& summary, const RunReco
     }
   }
   counts.all_confirmed += all_within ? 1U : 0U;
-  const Json& series = report.at("coverage_over_time");
+  const nlohmann::json& series = report.at("coverage_over_time");
   for (std::size_t k = 0; k < plan.coverage_at_s.size(); ++k) {
     group.coverage_at[k].push_back(CoverageAt(series, plan.coverage_at_s[k]));
   }
@@ -87,13 +85,13 @@ void AddReport(const SweepPlan& plan, const SweepSummary& summary, const RunReco
   group.collisions += collisions;
   counts.runs_with_collision += collisions > 0 ? 1U : 0U;
   for (const auto& [id, vehicle] : report.at("vehicles").items()) {
-    group.flight_hours += vehicle.at("airborne_s").get<double>() / kSecondsPerHour;
+    group.flight_hours += vehicle.at("airborne_s").get<double>() / kSecondsPerFlightHour;
   }
   if (const std::optional<double> m = OptionalNumber(report.at("min_separation_m"))) {
     group.min_separation_m.push_back(*m);
   }
   group.false_tracks += report.at("false_tracks").size();
-  const Json& radio = report.at("radio");
+  const nlohmann::json& radio = report.at("radio");
   group.radio_busy_fraction.push_back(radio.at("busy_fraction").get<double>());
   if (const std::optional<double> p50 = OptionalNumber(radio.at("report_latency_s").at("p50"))) {
     group.report_latency_p50_s.push_back(*p50);
@@ -113,8 +111,8 @@ nlohmann::ordered_json ToJson(const RunRecord& record) {
   j["id"] = record.id;
   j["seed"] = record.seed;
   j["status"] = ToString(record.status);
-  j["exit_code"] = record.exit_code ? Json(*record.exit_code) : Json(nullptr);
-  j["signal"] = record.signal ? Json(*record.signal) : Json(nullptr);
+  j["exit_code"] = record.exit_code ? nlohmann::json(*record.exit_code) : nlohmann::json(nullptr);
+  j["signal"] = record.signal ? nlohmann::json(*record.signal) : nlohmann::json(nullptr);
   j["wall_s"] = record.wall_s;
   j["detail"] = record.detail;
   return j;

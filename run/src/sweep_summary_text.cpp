@@ -14,7 +14,7 @@ using Json = nlohmann::ordered_json;
 constexpr std::array<double, 3> kQuantiles{0.1, 0.5, 0.9};
 constexpr std::array<std::string_view, 3> kQuantileNames{"p10", "p50", "p90"};
 
-Json Optional(const std::optional<double>& value) {
+Json NullOr(const std::optional<double>& value) {
   return value ? Json(*value) : Json(nullptr);
 }
 
@@ -33,18 +33,18 @@ std::optional<double> Max(const std::vector<double>& sorted) {
 Json RateJson(const Rate& rate) {
   return {{"successes", rate.successes},
           {"trials", rate.trials},
-          {"rate", Optional(rate.rate)},
-          {"ci95", Json::array({Optional(rate.low), Optional(rate.high)})}};
+          {"rate", NullOr(rate.rate)},
+          {"ci95", Json::array({NullOr(rate.low), NullOr(rate.high)})}};
 }
 
 Json Distribution(const std::vector<double>& sorted, bool with_values) {
   Json j;
   j["count"] = sorted.size();
-  j["mean"] = Optional(Mean(sorted));
+  j["mean"] = NullOr(Mean(sorted));
   for (std::size_t q = 0; q < kQuantiles.size(); ++q) {
-    j[std::string(kQuantileNames[q])] = Optional(Percentile(sorted, kQuantiles[q]));
+    j[std::string(kQuantileNames[q])] = NullOr(Percentile(sorted, kQuantiles[q]));
   }
-  j["max"] = Optional(Max(sorted));
+  j["max"] = NullOr(Max(sorted));
   if (with_values) j["values"] = sorted;
   return j;
 }

@@ -25,25 +25,7 @@ namespace {
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 
-constexpr auto kDeadline = std::chrono::seconds(300);
-
-std::string FileText(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-bool Mentions(const RunResult& result, const std::string& text) {
-  for (const std::string& line : result.lines) {
-    if (line.find(text) != std::string::npos) return true;
-  }
-  return false;
-}
-
-std::string Output(const RunResult& result) {
-  std::string all;
-  for (const std::string& line : result.lines) all += line + "\n";
-  return all;
-}
+constexpr auto kSweepDeadline = std::chrono::seconds(300);
 
 class SweepCommandTest : public CommandTest {
  protected:
@@ -68,6 +50,24 @@ class SweepCommandTest : public CommandTest {
   static std::string Summaries(const fs::path& out) {
     return FileText(out / "summary.json") + FileText(out / "summary.csv") +
            FileText(out / "summary.html");
+  }
+
+  static std::string FileText(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  }
+
+  static bool Mentions(const RunResult& result, const std::string& text) {
+    for (const std::string& line : result.lines) {
+      if (line.find(text) != std::string::npos) return true;
+    }
+    return false;
+  }
+
+  static std::string Output(const RunResult& result) {
+    std::string all;
+    for (const std::string& line : result.lines) all += line + "\n";
+    return all;
   }
 
   static nlohmann::json Record(const fs::path& out, const std::string& run) {
@@ -118,7 +118,7 @@ TEST_F(SweepCommandTest, TheSummaryIsTheSameFromOneJobTwoJobsAndTheSlurmChunks) 
 TEST_F(SweepCommandTest, ARunKilledMidSweepIsRecordedAndTheSweepGoesOn) {
   const std::string sweep = WriteSweep(1);
   FireswarmProcess process({"sweep", sweep, "--out", PathOf("out"), "--jobs", "1"});
-  const auto deadline = std::chrono::steady_clock::now() + kDeadline;
+  const auto deadline = std::chrono::steady_clock::now() + kSweepDeadline;
   pid_t child = -1;
   while (const auto line = process.ReadLine(deadline)) {
     if (line->starts_with("run 00000 started (pid ")) {
@@ -161,7 +161,7 @@ TEST_F(SweepCommandTest, ASweepKilledOutrightResumesWithoutRedoingARecordedRun) 
   const std::string sweep = WriteSweep(2);
   {
     FireswarmProcess process({"sweep", sweep, "--out", PathOf("out"), "--jobs", "1"});
-    const auto deadline = std::chrono::steady_clock::now() + kDeadline;
+    const auto deadline = std::chrono::steady_clock::now() + kSweepDeadline;
     bool first_done = false;
     while (const auto line = process.ReadLine(deadline)) {
       if (line->starts_with("run 00000 done")) {

@@ -25,7 +25,7 @@ namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 using ::testing::StartsWith;
 
-constexpr const char* kBase = R"(name: base
+constexpr const char* kSweepBaseScenario = R"(name: base
 seed: 3
 duration_s: 60
 area:
@@ -44,7 +44,7 @@ class SweepTest : public ::testing::Test {
            ("fireswarm_sweep_test_" + std::to_string(getpid()) + "_" +
             ::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::create_directories(dir_);
-    std::ofstream(dir_ / "base.yaml") << kBase;
+    std::ofstream(dir_ / "base.yaml") << kSweepBaseScenario;
   }
   void TearDown() override { fs::remove_all(dir_); }
 
@@ -191,8 +191,8 @@ TEST(SweepStatistics, WilsonIntervalAndPercentiles) {
 }
 
 // A report as `fireswarm run` writes it, with the keys the summary reads.
-nlohmann::json Report(const std::vector<std::optional<double>>& confirmed_s, double coverage,
-                      int collisions) {
+nlohmann::json FakeReport(const std::vector<std::optional<double>>& confirmed_s, double coverage,
+                          int collisions) {
   nlohmann::json fires = nlohmann::json::array();
   for (const std::optional<double>& c : confirmed_s) {
     fires.push_back({{"confirmed_s", c ? nlohmann::json(*c) : nlohmann::json(nullptr)},
@@ -225,7 +225,7 @@ SweepPlan TwoByTwoPlan() {
   return plan;
 }
 
-RunFiles Done(std::size_t id, int exit_code, nlohmann::json report) {
+RunFiles DoneRun(std::size_t id, int exit_code, nlohmann::json report) {
   RunRecord record;
   record.id = id;
   record.status = RunStatus::kDone;
@@ -240,8 +240,8 @@ TEST(SweepSummaryTest, CountsRatesAndDistributionsPerCombination) {
   crashed.status = RunStatus::kCrashed;
   crashed.signal = 9;
   const std::vector<RunFiles> files{
-      Done(0, 0, Report({30.0, 45.0}, 0.8, 0)),  // one fire 35 s after ignition: not within 40
-      Done(1, 1, Report({20.0, std::nullopt}, 0.6, 1)),
+      DoneRun(0, 0, FakeReport({30.0, 45.0}, 0.8, 0)),  // 20 and 35 s after ignition: within 40
+      DoneRun(1, 1, FakeReport({20.0, std::nullopt}, 0.6, 1)),
       {crashed, std::nullopt},
       {std::nullopt, std::nullopt}};  // missing
   const SweepSummary summary = Summarize(plan, files);
@@ -308,9 +308,10 @@ std::vector<std::pair<double, double>> PlotPoints(const std::string& html, const
 
 TEST(SweepSummaryTest, ThePlotsHoldTheSummarysNumbers) {
   const SweepPlan plan = TwoByTwoPlan();
-  const std::vector<RunFiles> files{
-      Done(0, 0, Report({30.0, 45.0}, 0.8, 0)), Done(1, 0, Report({20.0, std::nullopt}, 0.6, 0)),
-      Done(2, 0, Report({12.5, 13.0}, 0.9, 0)), Done(3, 0, Report({60.0, 70.0}, 1.0, 0))};
+  const std::vector<RunFiles> files{DoneRun(0, 0, FakeReport({30.0, 45.0}, 0.8, 0)),
+                                    DoneRun(1, 0, FakeReport({20.0, std::nullopt}, 0.6, 0)),
+                                    DoneRun(2, 0, FakeReport({12.5, 13.0}, 0.9, 0)),
+                                    DoneRun(3, 0, FakeReport({60.0, 70.0}, 1.0, 0))};
   const SweepSummary summary = Summarize(plan, files);
   const std::string html = SummaryHtml(summary);
   for (const GroupSummary& group : summary.groups) {
