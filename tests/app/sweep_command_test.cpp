@@ -96,6 +96,15 @@ TEST_F(SweepCommandTest, TheSummaryIsTheSameFromOneJobTwoJobsAndTheSlurmChunks) 
   EXPECT_EQ(summary["groups"][1]["label"], "fleet.count=2");
   EXPECT_EQ(summary["groups"][1]["runs"]["done"], 2);
   EXPECT_EQ(summary["runs"]["done"], 4);
+  // The page has its three plots, a line per combination in each.
+  const std::string html = FileText(dir_ / "one" / "summary.html");
+  for (const char* plot : {"time_to_confirm_cdf", "coverage_over_time", "fused_error_cdf"}) {
+    const std::size_t at = html.find(std::string("id=\"") + plot + "\"");
+    ASSERT_NE(at, std::string::npos) << plot;
+    const std::string svg = html.substr(at, html.find("</svg>", at) - at);
+    EXPECT_THAT(svg, HasSubstr("data-label=\"fleet.count=1\"")) << plot;
+    EXPECT_THAT(svg, HasSubstr("data-label=\"fleet.count=2\"")) << plot;
+  }
 
   // The Slurm path without Slurm: the emitted script run once per array task.
   const RunResult emit =
