@@ -19,7 +19,7 @@ skip() {
 }
 
 [ "$(id -u)" -eq 0 ] || skip "needs root to start munged, slurmctld and slurmd"
-for tool in munged munge unmunge slurmctld slurmd sbatch sinfo scontrol runuser; do
+for tool in munged munge unmunge slurmctld slurmd sbatch sinfo squeue scancel runuser; do
   command -v "$tool" >/dev/null 2>&1 ||
     skip "$tool not found: install Debian's slurmctld slurmd slurm-client munge (scripts/install-deps.sh)"
 done
@@ -28,8 +28,17 @@ done
 work=$(mktemp -d /tmp/fireswarm_slurm.XXXXXX)
 chmod 755 "$work"
 pids=()
+ctld_started=0
 cleanup() {
   local status=$?
+  # Jobs first (a job's processes outlive slurmd under proctrack/linuxproc).
+  if [ "$ctld_started" -eq 1 ]; then
+    scancel --quiet --user=root 2>/dev/null || true
+    for _ in $(seq 1 100); do
+      [ -z "$(squeue -h 2>/dev/null || true)" ] && break
+      sleep 0.1
+    done
+  fi
   for pid in "${pids[@]}"; do kill "$pid" 2>/dev/null || true; done
   for pid in "${pids[@]}"; do wait "$pid" 2>/dev/null || true; done
   if [ "$status" -ne 0 ] && [ "$status" -ne "$kSkip" ]; then
@@ -95,6 +104,7 @@ EOF
 export SLURM_CONF="$work/slurm.conf"
 slurmctld -D -i -f "$SLURM_CONF" >"$work/slurmctld.out" 2>&1 &
 pids+=($!)
+ctld_started=1
 slurmd -D -N localhost -f "$SLURM_CONF" >"$work/slurmd.out" 2>&1 &
 pids+=($!)
 ready=0
