@@ -19,7 +19,7 @@ skip() {
 }
 
 [ "$(id -u)" -eq 0 ] || skip "needs root to start munged, slurmctld and slurmd"
-for tool in munged munge unmunge slurmctld slurmd sbatch sinfo squeue scancel runuser; do
+for tool in munged munge unmunge slurmctld slurmd sbatch sinfo squeue scancel setpriv; do
   command -v "$tool" >/dev/null 2>&1 ||
     skip "$tool not found: install Debian's slurmctld slurmd slurm-client munge (scripts/install-deps.sh)"
 done
@@ -55,7 +55,7 @@ trap cleanup EXIT
 export MUNGE_SOCKET="$work/munge/munge.socket"
 mkdir -p "$work/munge"
 chown munge:munge "$work/munge"
-runuser -u munge -- munged --socket="$MUNGE_SOCKET" --pid-file="$work/munge/munged.pid" \
+setpriv --reuid=munge --regid=munge --init-groups munged --socket="$MUNGE_SOCKET" --pid-file="$work/munge/munged.pid" \
   --log-file="$work/munge.log" --seed-file="$work/munge/seed" --foreground >"$work/munged.log" 2>&1 &
 pids+=($!)
 ready=0
