@@ -1,5 +1,6 @@
 #include "sweep_dir.hpp"
 
+#include <cmath>
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -46,6 +47,22 @@ std::string SignalText(int signal) {
   const char* abbrev = sigabbrev_np(signal);
   return "killed by signal " + std::to_string(signal) +
          (abbrev != nullptr ? " (SIG" + std::string(abbrev) + ")" : std::string());
+}
+
+// One line per combination: the headline figures of summary.html's table.
+void PrintGroup(const run::GroupSummary& group, double confirm_within_s) {
+  const auto percent = [](const std::optional<double>& fraction) {
+    return fraction ? FlagText(std::round(1000.0 * *fraction) / 10.0) + " %" : std::string("-");
+  };
+  const auto seconds = [](const std::optional<double>& value) {
+    return value ? FlagText(std::round(*value)) + " s" : std::string("-");
+  };
+  std::cout << "  " << group.label << ": " << group.done << "/" << group.runs
+            << " done, every fire confirmed within " << FlagText(confirm_within_s) << " s in "
+            << percent(group.all_confirmed.rate) << " [" << percent(group.all_confirmed.low) << ", "
+            << percent(group.all_confirmed.high) << "], time to confirm p50 "
+            << seconds(run::Percentile(group.time_to_confirm_s, 0.5)) << ", p90 "
+            << seconds(run::Percentile(group.time_to_confirm_s, 0.9)) << "\n";
 }
 
 }  // namespace
@@ -140,6 +157,7 @@ int Collect(const fs::path& out) {
             << summary.crashed << " crashed, " << summary.timed_out << " timed out, "
             << summary.errors << " errors, " << summary.missing.size() << " missing\n"
             << "  summary: " << (out / "summary.json").string() << ", summary.csv, summary.html\n";
+  for (const run::GroupSummary& group : summary.groups) PrintGroup(group, summary.confirm_within_s);
   if (!summary.missing.empty()) {
     std::cerr << "fireswarm sweep: runs without a result:";
     for (const std::size_t id : summary.missing) std::cerr << " " << run::RunName(id);
