@@ -18,5 +18,6 @@ int RunReplay(const std::vector<std::string>& args);
 int RunServe(const std::vector<std::string>& args);
 int RunSim(const std::vector<std::string>& args);
 int RunKeys(const std::vector<std::string>& args);
+int RunSweep(const std::vector<std::string>& args);
 
 }  // namespace fireswarm::app

@@ -37,6 +37,8 @@ constexpr std::array kCommands{
             fireswarm::app::RunSim},
     Command{"sim-bench", "fly N drones with thermal cameras over a burning area; print the speed",
             fireswarm::app::RunSimBench},
+    Command{"sweep", "fly a scenario over many seeds and variants; summary with plots (local or Slurm)",
+            fireswarm::app::RunSweep},
     Command{"vehicle", "fly one simulated vehicle behind a real serial or UDP link (HIL)",
             fireswarm::app::RunVehicle},
 };

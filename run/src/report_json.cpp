@@ -29,6 +29,7 @@ Json FireJson(const FireOutcome& fire) {
   j["ignition_lat"] = fire.ignition.lat_deg;
   j["ignition_lon"] = fire.ignition.lon_deg;
   j["ignition_error_m"] = Optional(fire.ignition_error_m);
+  j["start_s"] = Number(fire.start_s);
   return j;
 }
 

@@ -5,7 +5,6 @@
 #include <yaml-cpp/yaml.h>
 
 #include <array>
-#include <fstream>
 #include <sstream>
 #include <stdexcept>
 
@@ -242,14 +241,6 @@ Expectations ReadExpect(const Mapping& root) {
   return out;
 }
 
-YAML::Node LoadYaml(std::string_view text, const std::string& source_name) {
-  try {
-    return YAML::Load(std::string(text));
-  } catch (const YAML::Exception& e) {
-    throw ScenarioError(internal::Where(source_name, e.mark) + "malformed YAML: " + e.msg);
-  }
-}
-
 }  // namespace
 
 std::string_view ToString(planner::PlannerKind kind) {
@@ -267,14 +258,15 @@ std::vector<int> FleetConfig::ReceiverIds() const {
 
 Scenario ParseScenario(std::string_view text, const std::string& source_name,
                        const std::filesystem::path& base_dir) {
-  const YAML::Node document = LoadYaml(text, source_name);
+  const YAML::Node document = internal::LoadYaml(text, source_name);
   const Field top(source_name, document, "");
   if (!document.IsMap()) {
     throw ScenarioError(source_name +
                         ": the scenario must be a YAML mapping of keys (name, area, fleet, ...)");
   }
-  const Mapping root(top, {"name", "seed", "duration_s", "area", "no_fly", "fleet", "radio",
-                           "separation", "fires", "random_fires", "distractors", "wind", "faults", "expect"});
+  const Mapping root(
+      top, {"name", "seed", "duration_s", "area", "no_fly", "fleet", "radio", "separation", "fires",
+            "random_fires", "distractors", "wind", "faults", "expect"});
   Scenario scenario;
   scenario.source = source_name;
   const std::optional<Field> name = root.Find("name");
@@ -293,15 +285,8 @@ Scenario ParseScenario(std::string_view text, const std::string& source_name,
 }
 
 Scenario LoadScenario(const std::filesystem::path& path) {
-  if (std::filesystem::is_directory(path)) {
-    throw ScenarioError(path.string() + ": is a directory, not a scenario file");
-  }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw ScenarioError(path.string() + ": cannot open the scenario file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw ScenarioError(path.string() + ": cannot read the scenario file");
-  return ParseScenario(text.str(), path.string(), path.parent_path());
+  return ParseScenario(internal::ReadConfigFile(path, "scenario file"), path.string(),
+                       path.parent_path());
 }
 
 planner::FleetSpec MakeFleetSpec(const Scenario& scenario) {

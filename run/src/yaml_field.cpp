@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <fstream>
 #include <limits>
 #include <sstream>
 #include <system_error>
@@ -63,6 +64,26 @@ std::string Range::Describe() const {
   if (std::isinf(max)) return (min_open ? "> " : ">= ") + FormatNumber(min);
   return std::string("in ") + (min_open ? "(" : "[") + FormatNumber(min) + ", " +
          FormatNumber(max) + (max_open ? ")" : "]");
+}
+
+YAML::Node LoadYaml(std::string_view text, const std::string& source_name) {
+  try {
+    return YAML::Load(std::string(text));
+  } catch (const YAML::Exception& e) {
+    throw ScenarioError(Where(source_name, e.mark) + "malformed YAML: " + e.msg);
+  }
+}
+
+std::string ReadConfigFile(const std::filesystem::path& path, const std::string& what) {
+  if (std::filesystem::is_directory(path)) {
+    throw ScenarioError(path.string() + ": is a directory, not a " + what);
+  }
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw ScenarioError(path.string() + ": cannot open the " + what);
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw ScenarioError(path.string() + ": cannot read the " + what);
+  return text.str();
 }
 
 std::string Where(const std::string& source, const YAML::Mark& mark) {

@@ -6,6 +6,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <cstdint>
+#include <filesystem>
 #include <initializer_list>
 #include <optional>
 #include <span>
@@ -26,6 +27,15 @@ struct Range {
   bool Contains(double value) const;
   std::string Describe() const;  ///< "in [0, 1]", "> 0", ">= 0"
 };
+
+/// The YAML document of `text`; throws ScenarioError "<source>:<line>:<column>:
+/// malformed YAML: ..." when it is not YAML.
+YAML::Node LoadYaml(std::string_view text, const std::string& source_name);
+
+/// The text of the configuration file at `path` (`what`: "scenario file", "sweep
+/// file"). Throws ScenarioError "<path>: is a directory, not a <what>" or
+/// "<path>: cannot open|read the <what>".
+std::string ReadConfigFile(const std::filesystem::path& path, const std::string& what);
 
 /// `<source>:<line>:<column>: ` for `mark`, or `<source>: ` when the mark is null.
 std::string Where(const std::string& source, const YAML::Mark& mark);

@@ -25,7 +25,7 @@ TEST(FireswarmMain, HelpListsEverySubcommand) {
 
 TEST(FireswarmMain, EverySubcommandHasHelp) {
   for (const std::string command :
-       {"params", "plan", "radio-bench", "radio-decode", "sim-bench", "vehicle"}) {
+       {"params", "plan", "radio-bench", "radio-decode", "sim-bench", "sweep", "vehicle"}) {
     const RunResult help = RunFireswarm(command + " --help");
     EXPECT_EQ(help.exit_code, 0) << command;
     EXPECT_TRUE(Contains(help, "usage: fireswarm " + command)) << command;

@@ -160,7 +160,7 @@ TEST(RunScenario, ReportJsonHasTheContractKeys) {
   EXPECT_EQ(fire_keys,
             (std::vector<std::string>{"true_lat", "true_lon", "fused_lat", "fused_lon", "error_m",
                                       "first_report_s", "confirmed_s", "vehicles", "ignition_lat",
-                                      "ignition_lon", "ignition_error_m"}));
+                                      "ignition_lon", "ignition_error_m", "start_s"}));
   for (const char* key :
        {"busy_fraction", "telemetry_age_s", "retries", "report_latency_s", "reports_lost"}) {
     EXPECT_TRUE(j["radio"].contains(key)) << key;

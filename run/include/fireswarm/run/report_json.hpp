@@ -11,7 +11,7 @@ namespace fireswarm::run {
 
 /// The report as JSON, keys in a fixed order:
 /// fires [{true_lat, true_lon, fused_lat, fused_lon, error_m, first_report_s,
-/// confirmed_s, vehicles, ignition_lat, ignition_lon, ignition_error_m}], false_tracks [{track_id,
+/// confirmed_s, vehicles, ignition_lat, ignition_lon, ignition_error_m, start_s}], false_tracks [{track_id,
 /// lat, lon, confirmed_s, vehicles}], coverage, coverage_over_time [[t_s, fraction]], collisions
 /// [{t_s, vehicle_a, vehicle_b, lat, lon}], min_separation_m, radio {busy_fraction, telemetry_age_s
 /// {"<id>": {p50, p99}}, retries, report_latency_s {p50, p99}, reports_lost},
