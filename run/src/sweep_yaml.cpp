@@ -43,11 +43,13 @@ void SetPath(YAML::Node root, const std::string& key, const YAML::Node& value) {
   node[parts.back()] = value;
 }
 
+// Absolute even when `dir` is not (a sweep file named relative to the working
+// directory): a run's scenario lies elsewhere and is run from elsewhere.
 void MakeAbsolute(YAML::Node node, const fs::path& dir) {
   if (!node.IsScalar()) return;
   const fs::path given(node.Scalar());
   if (given.is_absolute()) return;
-  node = (dir / given).lexically_normal().string();
+  node = fs::absolute(dir / given).lexically_normal().string();
 }
 
 }  // namespace

@@ -160,6 +160,28 @@ TEST_F(SweepTest, RelativeGeoJsonPathsBecomeAbsoluteInARunsScenario) {
   EXPECT_EQ(scenario.seed, 5U);
 }
 
+// `fireswarm sweep scenarios/sweeps/x.yaml`: the sweep file named relative to
+// the working directory; its runs' scenarios still name the GeoJSON absolutely.
+TEST_F(SweepTest, ASweepFileNamedRelativelyGivesItsRunsAbsoluteGeoJsonPaths) {
+  std::ofstream(dir_ / "area.geojson")
+      << R"({"type":"Polygon","coordinates":[[[7.0,45.0],[7.010146,45.0],[7.010146,45.0045],)"
+         R"([7.0,45.0045],[7.0,45.0]]]})";
+  std::ofstream(dir_ / "geo.yaml") << "area: {geojson: area.geojson}\n"
+                                      "fleet: {count: 1, launch: {lat: 44.9995, lon: 7.005}}\n";
+  const std::filesystem::path relative_dir =
+      std::filesystem::relative(dir_, std::filesystem::current_path());
+  ASSERT_FALSE(relative_dir.is_absolute());
+  const SweepSpec spec =
+      ParseSweep("scenario: geo.yaml\nseeds: [5]\n", "sweep.yaml", relative_dir);
+  const SweepPlan plan = MakePlan(spec);
+  ASSERT_EQ(plan.runs.size(), 1U);
+  const Scenario scenario =
+      ParseScenario(RunScenarioYaml(spec, plan.runs[0]), "elsewhere.yaml", "/nonexistent");
+  ASSERT_TRUE(scenario.area_geojson.has_value());
+  EXPECT_TRUE(scenario.area_geojson->is_absolute()) << *scenario.area_geojson;
+  EXPECT_EQ(*scenario.area_geojson, (dir_ / "area.geojson").lexically_normal());
+}
+
 TEST_F(SweepTest, SummaryOptionsDefaultToTheScenarios) {
   const SweepSpec spec = Parse("scenario: base.yaml\naxes:\n  duration_s: [40, 80]\n");
   EXPECT_DOUBLE_EQ(spec.confirm_within_s, 60.0);  // the base's duration, no expect
