@@ -16,6 +16,7 @@
 #include <sstream>
 #include <string>
 
+#include "common/scratch_dir.hpp"
 #include "fireswarm/planner/area_io.hpp"
 #include "fireswarm/radio/channel.hpp"
 #include "fireswarm/radio/master_scheduler.hpp"
@@ -45,14 +46,10 @@ void WriteFile(const fs::path& path, const std::string& text) {
 
 // A directory of this test process with areas/box.geojson in it.
 const fs::path& TestDir() {
-  static const fs::path dir = [] {
-    const fs::path d =
-        fs::path(::testing::TempDir()) / ("fireswarm_scenario_test_" + std::to_string(::getpid()));
-    fs::remove_all(d);
-    WriteFile(d / "areas" / "box.geojson", kBoxGeoJson);
-    return d;
-  }();
-  return dir;
+  static const test_support::ScratchDir dir("fireswarm_scenario_test");
+  const fs::path box = dir.path() / "areas" / "box.geojson";
+  if (!fs::exists(box)) WriteFile(box, kBoxGeoJson);
+  return dir.path();
 }
 
 // The repository root, found by walking up from this source file.
@@ -773,10 +770,10 @@ using ::testing::AllOf;
 
 TEST(ParseScenario, RadioChannelsAndTheirOverrides) {
   EXPECT_EQ(Parse(Minimal()).radio.channels, 1);
-  const Scenario s = Parse(Minimal(
-      "radio:\n  loss: 0.1\n  channels: 4\n  channel_overrides:\n"
-      "    - {channel: 2, baud: 19200, loss: 0.3, vehicles: [1]}\n"
-      "    - {channel: 3, turnaround_ms: 8}\n"));
+  const Scenario s =
+      Parse(Minimal("radio:\n  loss: 0.1\n  channels: 4\n  channel_overrides:\n"
+                    "    - {channel: 2, baud: 19200, loss: 0.3, vehicles: [1]}\n"
+                    "    - {channel: 3, turnaround_ms: 8}\n"));
   EXPECT_EQ(s.radio.channels, 4);
   ASSERT_EQ(s.radio.channel_overrides.size(), 2U);
   EXPECT_EQ(s.radio.channel_overrides[0].vehicles, std::vector<int>{1});
@@ -794,10 +791,9 @@ TEST(ParseScenario, BadRadioChannelsNameTheFileLineAndKey) {
   EXPECT_THAT(ErrorOf(Minimal("radio: {channels: 0}\n")), HasSubstr("radio.channels"));
   EXPECT_THAT(ErrorOf(Minimal("radio:\n  channels: 2\n  channel_overrides:\n    - {channel: 2}\n")),
               AllOf(StartsWith("test.yaml:"), HasSubstr("radio.channel_overrides[0].channel")));
-  EXPECT_THAT(
-      ErrorOf(Minimal("radio:\n  channels: 2\n  channel_overrides:\n    - {channel: 1}\n"
-                      "    - {channel: 1, loss: 0.2}\n")),
-      HasSubstr("channel 1 is overridden twice"));
+  EXPECT_THAT(ErrorOf(Minimal("radio:\n  channels: 2\n  channel_overrides:\n    - {channel: 1}\n"
+                              "    - {channel: 1, loss: 0.2}\n")),
+              HasSubstr("channel 1 is overridden twice"));
   EXPECT_THAT(ErrorOf(Minimal("radio:\n  channels: 2\n  channel_overrides:\n"
                               "    - {channel: 0, vehicles: [1]}\n"
                               "    - {channel: 1, vehicles: [1]}\n")),

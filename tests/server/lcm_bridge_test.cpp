@@ -19,6 +19,7 @@
 #include <random>
 #include <string>
 
+#include "common/scratch_dir.hpp"
 #include "fireswarm/common/time.hpp"
 #include "server/fake_fleet.hpp"
 #include "server/server_fixture.hpp"
@@ -33,8 +34,8 @@ using testing::kFrame;
 using testing::kSecond;
 
 std::filesystem::path TempDir(const std::string& name) {
-  const std::filesystem::path dir = std::filesystem::path(::testing::TempDir()) /
-                                    ("lcm_bridge_" + name + "_" + std::to_string(getpid()));
+  static const test_support::ScratchDir scratch("lcm_bridge");
+  const std::filesystem::path dir = scratch.path() / name;
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "command_center_messages.hpp"
+#include "common/scratch_dir.hpp"
 
 namespace fireswarm::server {
 namespace {
@@ -22,10 +23,8 @@ using test::Flying;
 using ::testing::HasSubstr;
 
 fs::path TempPath(const std::string& name) {
-  const fs::path dir =
-      fs::path(::testing::TempDir()) / ("replay_test_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  const fs::path path = dir / name;
+  static const test_support::ScratchDir dir("replay_test");
+  const fs::path path = dir.path() / name;
   fs::remove(path);
   return path;
 }
