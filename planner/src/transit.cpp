@@ -126,6 +126,9 @@ struct TransitPlanner::Impl {
   MultiPolygon no_fly;
   Box bounds;
   unsigned seed = 1;
+  // Each zone's envelope: a segment is checked only against the zones whose box
+  // meets its own (Boost.Geometry sectionalizes every zone it is given, each call).
+  std::vector<Box> zone_boxes;
   // The zones' corners and which pairs see each other (the segment between them
   // enters no zone's interior): the visibility graph the shortest path runs on.
   std::vector<Point> corners;
@@ -133,8 +136,9 @@ struct TransitPlanner::Impl {
 };
 
 TransitPlanner::TransitPlanner(const MultiPolygon& no_fly, const Box& bounds, unsigned seed)
-    : impl_(std::make_unique<Impl>(Impl{no_fly, bounds, seed, {}, {}})) {
+    : impl_(std::make_unique<Impl>(Impl{no_fly, bounds, seed, {}, {}, {}})) {
   SilenceOmplOnce();
+  for (const Polygon& zone : no_fly) impl_->zone_boxes.push_back(bg::return_envelope<Box>(zone));
   // Each corner is moved kCornerOffsetM off the zone along its bisector, so paths
   // between corners run just outside the edges instead of on them (where rounding
   // puts them a hair inside) and still 0 m inside.
@@ -204,7 +208,15 @@ bool TransitPlanner::IsInside(Point p) const {
 }
 
 bool TransitPlanner::IsClear(Point from, Point to) const {
-  return InteriorLengthM(Path{from, to}, impl_->no_fly) == 0.0;
+  // A zone whose box the segment's box misses holds no point of the segment:
+  // leaving it out changes neither the pieces nor what lies inside the zones.
+  const Path segment{from, to};
+  const Box reach = bg::return_envelope<Box>(segment);
+  MultiPolygon near;
+  for (std::size_t k = 0; k < impl_->zone_boxes.size(); ++k) {
+    if (!bg::disjoint(reach, impl_->zone_boxes[k])) near.push_back(impl_->no_fly[k]);
+  }
+  return near.empty() || InteriorLengthM(segment, near) == 0.0;
 }
 
 bool TransitPlanner::IsCircleClear(Point center, double radius_m) const {

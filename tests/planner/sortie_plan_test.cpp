@@ -127,7 +127,8 @@ TEST(LargeAreaPlan, RefusesAPointOutOfReachNamingItAndAcceptsWithASiteNearIt) {
 // not the dozens of strips a route cut into shares gave. Its own separate parts
 // (a MultiPolygon) and the bays a block crosses are what splits a sortie.
 TEST(LargeAreaPlan, SortiesOnARaggedBoundaryAreFewPieces) {
-  const SearchArea area = LoadSearchArea(std::string(FIRESWARM_OSM_AREAS) + "/thayatal.geojson");
+  const SearchArea area =
+      LoadSearchArea(std::filesystem::path(FIRESWARM_OSM_AREAS) / "thayatal.geojson");
   FleetSpec fleet = Fleet(10, DefaultLaunchPoint(area));
   fleet.altitude_m = 100.0;
   fleet.speed_mps = 12.0;
