@@ -111,6 +111,7 @@ nlohmann::ordered_json ToJson(const Report& report) {
                      {"resolved", separation.resolved},
                      {"lost_separation", separation.lost_separation},
                      {"takeoffs_held", separation.takeoffs_held},
+                     {"releases", separation.releases},
                      {"closest", nullptr},
                      {"lost", Json::array()}};
   for (const SeparationOutcome::Lost& lost : separation.lost) {

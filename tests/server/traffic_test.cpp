@@ -31,12 +31,18 @@ struct Drone {
   double order_acts_s = 0.0;  // the order arrives (radio) and acts from then
   double order_until_s = 0.0;
   double climb_mps = 0.0;
+  // Where it climbs or descends to by itself (a take-off's climb-out), when not
+  // ordered otherwise; reported in its telemetry.
+  std::optional<double> intent_m;
+  bool ignores_releases = false;  // as a vehicle that keeps every order to its end
 };
 
 struct Outcome {
   double min_separation_m = std::numeric_limits<double>::infinity();
   int orders = 0;
-  std::map<int, int> orders_to;  // vehicle -> orders it got
+  std::map<int, int> orders_to;            // vehicle -> orders it got
+  int releases = 0;                        // orders with altitude 0: the standing order ends
+  std::map<int, double> reached_intent_s;  // vehicle -> when it first got there
 };
 
 constexpr double kDroneStepS = 0.1;  // the drones' time step
@@ -48,29 +54,41 @@ void ReportAll(const std::vector<Drone>& drones, TrafficControl& watch, double t
     sample.position_m = d.position_m;
     sample.velocity_mps = {d.velocity_mps.x(), d.velocity_mps.y(), d.climb_mps};
     sample.at_s = t;
+    sample.intent_altitude_m = d.intent_m;
     watch.Observe(d.id, sample);
   }
 }
 
 // `order`, given at `t`, acts on its drone `radio_delay_s` later.
 void DeliverOrder(std::vector<Drone>& drones, const AvoidOrder& order, double t,
-             double radio_delay_s) {
+                  double radio_delay_s) {
   for (Drone& d : drones) {
     if (d.id != order.vehicle) continue;
+    if (order.altitude_m <= 0.0) {  // a release: the order ends when it arrives
+      if (d.ignores_releases) continue;
+      d.order_until_s = std::min(d.order_until_s, t + radio_delay_s);
+      continue;
+    }
     d.ordered_altitude_m = order.altitude_m;
     d.order_acts_s = t + radio_delay_s;
     d.order_until_s = t + order.duration_s;
   }
 }
 
-// One step from `t`: straight on, climbing or descending to an order that acts.
+// One step from `t`: straight on, climbing or descending to an order that acts,
+// else to its own intent.
 void AdvanceDrone(Drone& d, double t) {
   d.climb_mps = 0.0;
+  std::optional<double> target = d.intent_m;
   if (d.ordered_altitude_m && t >= d.order_acts_s && t < d.order_until_s) {
-    const double error = *d.ordered_altitude_m - d.position_m.z();
+    target = d.ordered_altitude_m;
+  }
+  if (target) {
+    const double error = *target - d.position_m.z();
     d.climb_mps = std::clamp(error / kDroneStepS, -kDescentMps, kClimbMps);
   }
-  d.position_m += Eigen::Vector3d(d.velocity_mps.x(), d.velocity_mps.y(), d.climb_mps) * kDroneStepS;
+  d.position_m +=
+      Eigen::Vector3d(d.velocity_mps.x(), d.velocity_mps.y(), d.climb_mps) * kDroneStepS;
 }
 
 // Flies `drones` for `duration_s` with the watch stepping every 0.5 s; an order
@@ -85,11 +103,17 @@ Outcome Fly(std::vector<Drone>& drones, TrafficControl& watch, double duration_s
       ReportAll(drones, watch, t);
     }
     for (const AvoidOrder& order : watch.Step(t)) {
+      if (order.altitude_m <= 0.0) ++out.releases;
       ++out.orders;
       ++out.orders_to[order.vehicle];
       DeliverOrder(drones, order, t, radio_delay_s);
     }
-    for (Drone& d : drones) AdvanceDrone(d, t);
+    for (Drone& d : drones) {
+      AdvanceDrone(d, t);
+      if (d.intent_m && std::abs(d.position_m.z() - *d.intent_m) < 0.5) {
+        out.reached_intent_s.try_emplace(d.id, t);
+      }
+    }
     for (std::size_t i = 0; i < drones.size(); ++i) {
       for (std::size_t j = i + 1; j < drones.size(); ++j) {
         out.min_separation_m =
@@ -155,6 +179,61 @@ TEST(TrafficControl, OvertakingPairAtOneAltitudeIsResolved) {
   EXPECT_GE(out.min_separation_m, config.separation_m);
   EXPECT_EQ(watch.counts().conflicts, 1U);
   EXPECT_GE(out.orders, 1);
+}
+
+// Drone 1 takes off (climbing from 30 m to 105 m) under drone 2, which crosses
+// over its stand at 90 m and 3 m/s: the take-off is told to stay level.
+std::vector<Drone> TakeOffUnderASlowCrossing(bool ignores_releases) {
+  Drone climbing = At(1, 0, 0, 30, 0, 0);
+  climbing.intent_m = 105.0;
+  climbing.climb_mps = kClimbMps;  // already on its way up
+  climbing.ignores_releases = ignores_releases;
+  return {climbing, At(2, -60, 0, 90, 90, 3)};
+}
+
+TEST(TrafficControl, ALevelOrderHoldingATakeOffIsReleasedOnceTheTrafficHasPassed) {
+  SeparationConfig config;
+  TrafficControl watch(config);
+  std::vector<Drone> drones = TakeOffUnderASlowCrossing(/*ignores_releases=*/false);
+  const Outcome out = Fly(drones, watch, 120.0, kWorstRadioDelayS);
+  EXPECT_GE(out.min_separation_m, config.separation_m);
+  ASSERT_EQ(watch.conflicts().size(), 1U);
+  const Conflict& conflict = watch.conflicts().front();
+  EXPECT_EQ(conflict.resolution, Resolution::kLevel);
+  EXPECT_EQ(conflict.mover, 1);
+  EXPECT_EQ(conflict.outcome, ConflictOutcome::kResolved);
+  EXPECT_EQ(out.releases, 1);
+  EXPECT_EQ(watch.counts().releases, 1U);
+
+  // The same take-off by a vehicle that holds the order to its end: safe too,
+  // but it hovers for the order's tail after drone 2 has gone.
+  TrafficControl keeps(config);
+  std::vector<Drone> held = TakeOffUnderASlowCrossing(/*ignores_releases=*/true);
+  const Outcome kept = Fly(held, keeps, 120.0, kWorstRadioDelayS);
+  EXPECT_GE(kept.min_separation_m, config.separation_m);
+  ASSERT_TRUE(out.reached_intent_s.contains(1));
+  ASSERT_TRUE(kept.reached_intent_s.contains(1));
+  EXPECT_LT(out.reached_intent_s.at(1), kept.reached_intent_s.at(1) - 5.0);
+}
+
+TEST(TrafficControl, ALevelOrderIsNotReleasedWhileItsOwnClimbWouldMeetTheNextDrone) {
+  // Drone 3 follows drone 2 over the stand 20 s later, at the same altitude:
+  // once drone 2 has passed, climbing would meet drone 3; the order stands (or
+  // is given again) until drone 3 has passed too.
+  SeparationConfig config;
+  TrafficControl watch(config);
+  std::vector<Drone> drones = TakeOffUnderASlowCrossing(/*ignores_releases=*/false);
+  drones.push_back(At(3, -120, 0, 90, 90, 3));
+  const Outcome out = Fly(drones, watch, 160.0, kWorstRadioDelayS);
+  EXPECT_GE(out.min_separation_m, config.separation_m);
+  EXPECT_EQ(watch.counts().lost_separation, 0U);
+  ASSERT_TRUE(out.reached_intent_s.contains(1));
+  // Drone 3 is over the stand 40 s in; drone 1 cannot be through 90 m before.
+  EXPECT_GT(out.reached_intent_s.at(1), 40.0);
+  // Not released between the two: a release then would have opened a second
+  // conflict (drone 1's climb into drone 3) and needed a second order.
+  EXPECT_EQ(watch.counts().conflicts, 1U);
+  EXPECT_EQ(out.orders - out.releases, 1);
 }
 
 TEST(TrafficControl, WithoutResolutionTheConflictIsCountedAndSeparationIsLost) {
@@ -241,8 +320,7 @@ struct TakeOff {
   Eigen::Vector3d position_m = Eigen::Vector3d::Zero();
   Eigen::Vector3d velocity_mps = Eigen::Vector3d::Zero();
 
-  TakeOff(int vehicle, Eigen::Vector2d stand_m, Eigen::Vector2d first_m,
-          double climb_out_m = 105.0)
+  TakeOff(int vehicle, Eigen::Vector2d stand_m, Eigen::Vector2d first_m, double climb_out_m = 105.0)
       : id(vehicle) {
     departure.stand_m = stand_m;
     departure.route_m = {{first_m.x(), first_m.y(), climb_out_m}};
@@ -295,7 +373,8 @@ double FlyTakeOffs(std::vector<TakeOff>& takeoffs, std::vector<Drone> traffic,
       next_ask_s += 1.0;
       for (TakeOff& d : takeoffs) {
         if (d.climbs_from_s) continue;
-        if (!gated || watch.ClearToDepart(d.id, d.departure, t)) d.climbs_from_s = t + start_delay_s;
+        if (!gated || watch.ClearToDepart(d.id, d.departure, t))
+          d.climbs_from_s = t + start_delay_s;
       }
     }
     for (Drone& d : traffic) AdvanceDrone(d, t);
@@ -332,8 +411,8 @@ TEST(TrafficControl, ATakeOffWaitsUntilItsClimbIsClearOfTheTrafficOverItsStand) 
     SeparationConfig config;
     TrafficControl watch(config);
     std::vector<TakeOff> takeoff = {TakeOff(1, {0.0, 0.0}, {0.0, 600.0})};
-    const double closest_m = FlyTakeOffs(takeoff, EastboundStream(), watch, 200.0, 10.0,
-                                         start_delay_s);
+    const double closest_m =
+        FlyTakeOffs(takeoff, EastboundStream(), watch, 200.0, 10.0, start_delay_s);
     EXPECT_GE(closest_m, config.separation_m);
     EXPECT_GT(watch.counts().takeoffs_held, 0U);
     ASSERT_TRUE(takeoff[0].climbs_from_s);  // the stream passes, the drone goes
@@ -356,10 +435,9 @@ TEST(TrafficControl, TakeOffsFromOneSiteGoInTurnWhenOnesWayOutCrossesAnothersSta
   // which climb through 60 m to 105 and 90 m; drone 4's way out, north at 105 m,
   // crosses nobody's stand.
   const auto fleet = [] {
-    return std::vector<TakeOff>{TakeOff(1, {0.0, 0.0}, {800.0, 0.0}, 60.0),
-                                TakeOff(2, {20.0, 0.0}, {800.0, 0.0}, 105.0),
-                                TakeOff(3, {40.0, 0.0}, {800.0, 0.0}, 90.0),
-                                TakeOff(4, {0.0, 20.0}, {0.0, 800.0}, 105.0)};
+    return std::vector<TakeOff>{
+        TakeOff(1, {0.0, 0.0}, {800.0, 0.0}, 60.0), TakeOff(2, {20.0, 0.0}, {800.0, 0.0}, 105.0),
+        TakeOff(3, {40.0, 0.0}, {800.0, 0.0}, 90.0), TakeOff(4, {0.0, 20.0}, {0.0, 800.0}, 105.0)};
   };
   for (const double start_delay_s : {0.0, TrafficControl::kStartDelayMaxS}) {
     SCOPED_TRACE(start_delay_s);

@@ -111,6 +111,7 @@ struct SeparationOutcome {
   std::uint64_t resolved = 0;   ///< passed apart
   std::uint64_t lost_separation = 0;  ///< passed closer than the limit, as reported
   std::uint64_t takeoffs_held = 0;    ///< take-off clearances refused (asked again)
+  std::uint64_t releases = 0;         ///< level orders ended once their conflict closed
   std::optional<ClosestApproach> closest;  ///< where min_separation_m was sampled
   /// The conflicts that lost separation: when detected, the pair, the closest
   /// they were reported, what was ordered ("climb", "descend", "level", "none").

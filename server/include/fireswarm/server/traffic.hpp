@@ -110,6 +110,8 @@ struct Conflict {
 };
 
 /// An order to send: vehicle flies at altitude_m for duration_s (kAvoid).
+/// altitude_m 0 ends the vehicle's standing order now (a release; the vehicle
+/// refuses a duration of 0, so a release carries 1 s).
 struct AvoidOrder {
   int vehicle = 0;
   double altitude_m = 0.0;
@@ -134,6 +136,8 @@ struct TrafficCounts {
   std::uint64_t resolved = 0;
   std::uint64_t lost_separation = 0;
   std::uint64_t takeoffs_held = 0;  ///< take-off clearances refused (asked again later)
+  /// Level orders ended early (AvoidOrder with altitude 0): the conflict had closed.
+  std::uint64_t releases = 0;
 };
 
 class TrafficControl {
@@ -161,7 +165,8 @@ class TrafficControl {
   /// departure cleared before it. Throws std::invalid_argument for a departure
   /// without waypoints. A clear departure is reserved:
   /// later clearances keep off it until the drone's telemetry shows it on its way
-  /// at speed (or kDepartureHoldS after its clearance). A refusal is counted
+  /// at speed (or kDepartureHoldS after its clearance, unless an avoid order
+  /// holds it then). A refusal is counted
   /// (counts().takeoffs_held); ask again later.
   bool ClearToDepart(int vehicle, const Departure& departure, double now_s);
   /// The longest a start command takes from the server's decision to the
@@ -173,6 +178,11 @@ class TrafficControl {
   static constexpr double kDepartureHoldS = 120.0;
 
   /// Predicts, opens and closes conflicts at `now_s`; the orders to send now.
+  /// A level order (a take-off or landing held where it is) is released as soon
+  /// as no open conflict involves its drone and its own climb or descent from
+  /// there is predicted clear of every other drone; a climb or descent order
+  /// runs its course (the drone flies on meanwhile; its own altitude afterwards
+  /// is its route's, which the straight-on watch does not predict).
   /// Runs at most every kStepS (earlier calls return nothing).
   std::vector<AvoidOrder> Step(double now_s);
   static constexpr double kStepS = 0.5;
@@ -200,14 +210,19 @@ class TrafficControl {
     double altitude_m = 0.0;
     double until_s = 0.0;
     double from_s = 0.0;  // when it was ordered
+    bool level = false;   // Resolution::kLevel: released when its conflict is over
+    std::int32_t conflict_id = 0;
   };
   struct Reserved {
     Departure departure;
     double cleared_s = 0.0;
   };
   std::map<int, Reserved> departures_;  // cleared take-offs not yet on their way
-  std::map<int, Held> orders_;                       // vehicle -> its standing avoid order
-  std::map<std::pair<int, int>, std::size_t> open_;  // pair -> index in conflicts_
+  // Drops the reservations older than kDepartureHoldS, but not of a drone an
+  // avoid order holds.
+  void LapseReservations(double now_s);
+  std::map<int, Held> orders_;                          // vehicle -> its standing avoid order
+  std::map<std::pair<int, int>, std::size_t> open_;     // pair -> index in conflicts_
   std::map<std::pair<int, int>, double> last_order_s_;  // pair -> when it was last resolved
   double last_step_s_ = -1.0e9;
   std::vector<Conflict> conflicts_;
