@@ -3,10 +3,15 @@
 // garbage case also reports the fraction of intact frames found; and on streams built
 // to be slow (issue 19: a preamble every few bytes promising long frames, nested
 // false preambles) against random bytes. bytes_per_second is the figure.
-//   build/bin/parser_bench [--benchmark_filter=...]
+//   build/bin/parser_bench [--stream-mib N] [--benchmark_filter=...]
+// --stream-mib: the streams' size (default 8 MiB; the smoke test's 1 MiB keeps
+// its run short under the sanitizers).
 #include <benchmark/benchmark.h>
 
 #include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <map>
 #include <random>
 #include <tuple>
@@ -21,8 +26,8 @@ using fireswarm::radio::ChecksumMode;
 using fireswarm::radio::FrameParser;
 using fireswarm::radio::FrameView;
 
-constexpr std::size_t kStreamBytes = 8 << 20;  // 8 MiB per pass
-constexpr std::size_t kReadSize = 4096;        // bytes per Feed(), like a serial read
+std::size_t stream_bytes = std::size_t{8} << 20;  // per pass (--stream-mib)
+constexpr std::size_t kReadSize = 4096;           // bytes per Feed(), like a serial read
 
 enum class SizeMix : int {
   kFleet,    // the fleet's traffic: polls, telemetry, fire reports, heartbeats, chunks
@@ -55,7 +60,7 @@ BenchStream MakeStream(ChecksumMode mode, SizeMix mix, double garbage_fraction) 
   std::mt19937_64 rng(42);
   BenchStream stream;
   std::vector<std::uint8_t> data;
-  while (stream.bytes.size() < kStreamBytes) {
+  while (stream.bytes.size() < stream_bytes) {
     data.resize(DataSize(mix, rng));
     for (std::uint8_t& byte : data) byte = static_cast<std::uint8_t>(rng());
     const std::size_t before = stream.bytes.size();
@@ -156,14 +161,14 @@ std::vector<std::uint8_t> MakeHostileStream(Hostile kind) {
       break;
     case Hostile::kRandom: {
       std::mt19937_64 rng(19);
-      std::vector<std::uint8_t> bytes(kStreamBytes);
+      std::vector<std::uint8_t> bytes(stream_bytes);
       for (std::uint8_t& byte : bytes) byte = static_cast<std::uint8_t>(rng());
       return bytes;
     }
   }
   std::vector<std::uint8_t> bytes;
-  bytes.reserve(kStreamBytes + unit.size());
-  while (bytes.size() < kStreamBytes) bytes.insert(bytes.end(), unit.begin(), unit.end());
+  bytes.reserve(stream_bytes + unit.size());
+  while (bytes.size() < stream_bytes) bytes.insert(bytes.end(), unit.begin(), unit.end());
   return bytes;
 }
 
@@ -173,7 +178,9 @@ void BM_FrameParserHostile(benchmark::State& state, ChecksumMode mode, Hostile k
   std::uint64_t examined = 0;
   for (auto _ : state) {
     FrameParser parser(mode);
-    const auto on_frame = [](const FrameView& frame) { benchmark::DoNotOptimize(frame.data.data()); };
+    const auto on_frame = [](const FrameView& frame) {
+      benchmark::DoNotOptimize(frame.data.data());
+    };
     for (std::size_t at = 0; at < all.size(); at += kReadSize) {
       parser.Feed(all.subspan(at, std::min(kReadSize, all.size() - at)), on_frame);
     }
@@ -207,4 +214,27 @@ BENCHMARK_CAPTURE(BM_FrameParserHostile, secure_random, ChecksumMode::kSecure, H
 
 }  // namespace
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+  // --stream-mib N is ours; Google Benchmark is given the other arguments.
+  std::vector<char*> args = {argv[0]};
+  for (int i = 1; i < argc; ++i) {
+    if (std::strcmp(argv[i], "--stream-mib") == 0 && i + 1 < argc) {
+      char* end = nullptr;
+      const long mib = std::strtol(argv[++i], &end, 10);
+      if (*end != '\0' || mib < 1 || mib > 1024) {
+        std::fprintf(stderr, "parser_bench: --stream-mib: an integer in 1..1024, not '%s'\n",
+                     argv[i]);
+        return 2;
+      }
+      stream_bytes = static_cast<std::size_t>(mib) << 20;
+    } else {
+      args.push_back(argv[i]);
+    }
+  }
+  int count = static_cast<int>(args.size());
+  benchmark::Initialize(&count, args.data());
+  if (benchmark::ReportUnrecognizedArguments(count, args.data())) return 2;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}
