@@ -2,6 +2,7 @@
 #include "fireswarm/planner/plan.hpp"
 
 #include <algorithm>
+#include <array>
 #include <boost/geometry.hpp>
 #include <chrono>
 #include <cmath>
@@ -61,11 +62,10 @@ void CheckLaneCount(const SearchArea& area, const FleetSpec& fleet) {
   if (lanes <= kMaxPlanLanes) return;
   throw std::invalid_argument(
       "side_overlap " + std::to_string(fleet.side_overlap) + " at altitude_m " +
-      std::to_string(std::lround(fleet.altitude_m)) + " spaces lanes " +
-      std::to_string(spacing_m) + " m apart: the area (" +
-      std::to_string(std::lround(diagonal_m)) + " m across) would need about " +
-      std::to_string(std::llround(lanes)) + " lanes, more than the limit of " +
-      std::to_string(std::lround(kMaxPlanLanes)) +
+      std::to_string(std::lround(fleet.altitude_m)) + " spaces lanes " + std::to_string(spacing_m) +
+      " m apart: the area (" + std::to_string(std::lround(diagonal_m)) +
+      " m across) would need about " + std::to_string(std::llround(lanes)) +
+      " lanes, more than the limit of " + std::to_string(std::lround(kMaxPlanLanes)) +
       "; lower the overlap, fly higher, or split the area");
 }
 
@@ -99,8 +99,7 @@ void ValidateFleet(const SearchArea& area, const FleetSpec& fleet) {
                                                   ", " + std::to_string(launch.y()) +
                                                   ") is inside a no-fly zone");
   }
-  const auto in_range = [](const char* field, double value, double min, bool min_open,
-                           double max) {
+  const auto in_range = [](const char* field, double value, double min, bool min_open, double max) {
     const bool ok = (min_open ? value > min : value >= min) && value <= max;
     Require(ok, std::string(field) + " must be in " + (min_open ? "(" : "[") +
                     std::to_string(std::lround(min)) + ", " + std::to_string(std::lround(max)) +
@@ -200,9 +199,7 @@ class TransitDistance {
   explicit TransitDistance(const TransitPlanner& transit) : transit_(transit) {}
   double operator()(Point a, Point b) const {
     const double straight_m = bg::distance(a, b);
-    if (transit_.NoFly().empty() || straight_m <= 0.0 || transit_.IsClear(a, b)) {
-      return straight_m;
-    }
+    if (transit_.NoFly().empty() || straight_m <= 0.0 || IsClear(a, b)) return straight_m;
     const auto cell = [](double v) { return static_cast<long long>(std::floor(v / kDetourCellM)); };
     const auto key = std::make_tuple(cell(a.x()), cell(a.y()), cell(b.x()), cell(b.y()));
     auto it = detour_.find(key);
@@ -220,8 +217,18 @@ class TransitDistance {
   }
 
  private:
+  // The cutting asks for the same pairs (a site and a block's corners) over and
+  // over: each segment is checked against the zones once.
+  bool IsClear(Point a, Point b) const {
+    const std::array<double, 4> key = {a.x(), a.y(), b.x(), b.y()};
+    auto it = clear_.find(key);
+    if (it == clear_.end()) it = clear_.emplace(key, transit_.IsClear(a, b)).first;
+    return it->second;
+  }
+
   static constexpr double kDetourCellM = 250.0;
   const TransitPlanner& transit_;
+  mutable std::map<std::array<double, 4>, bool> clear_;
   mutable std::map<std::tuple<long long, long long, long long, long long>, double> detour_;
 };
 
