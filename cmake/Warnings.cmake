@@ -15,6 +15,14 @@ if(FIRESWARM_WERROR)
   target_compile_options(fireswarm_build_flags INTERFACE -Werror)
 endif()
 
+# LLVM's linker where it is installed (scripts/install-deps.sh installs it): the
+# sanitizer build's executables link about 3.5x faster than with GNU ld
+# (server_tests: 1.9 s instead of 6.9).
+find_program(FIRESWARM_LLD ld.lld)
+if(FIRESWARM_LLD)
+  add_link_options(-fuse-ld=lld)
+endif()
+
 if(FIRESWARM_SANITIZE)
   # Applied globally so every object, test and the executable share one runtime.
   # All of UBSan except -fsanitize=vptr: with GCC 12 it makes LCM 1.3.1's own C++
