@@ -8,17 +8,18 @@
 
 namespace fireswarm::run::test {
 
-inline Scenario SmallArea(const std::string& extra) {
-  const std::string text = R"(
-name: small_area
-seed: 3
+// Everything of the small scenario but its name.
+inline constexpr const char* kSmallAreaKeys = R"(seed: 3
 duration_s: 60
 area:
   polygon: [[7.0, 45.0], [7.010146, 45.0], [7.010146, 45.0045], [7.0, 45.0045]]
 fleet:
   count: 2
   launch: {lat: 44.9995, lon: 7.005}
-)" + extra;
+)";
+
+inline Scenario SmallArea(const std::string& extra) {
+  const std::string text = std::string("name: small_area\n") + kSmallAreaKeys + extra;
   return ParseScenario(text, "small_area.yaml", ".");
 }
 

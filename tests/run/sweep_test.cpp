@@ -17,6 +17,7 @@
 #include "fireswarm/run/scenario.hpp"
 #include "fireswarm/run/sweep_summary.hpp"
 #include "mini_xml.hpp"
+#include "small_area.hpp"
 
 namespace fireswarm::run {
 namespace {
@@ -25,17 +26,9 @@ namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 using ::testing::StartsWith;
 
-constexpr const char* kSweepBaseScenario = R"(name: base
-seed: 3
-duration_s: 60
-area:
-  polygon: [[7.0, 45.0], [7.010146, 45.0], [7.010146, 45.0045], [7.0, 45.0045]]
-fleet:
-  count: 2
-  launch: {lat: 44.9995, lon: 7.005}
-fires:
-  - {lat: 45.00230, lon: 7.00480, start_s: 10}
-)";
+// The runner tests' small area with a fire.
+const std::string kSweepBaseScenario = std::string("name: base\n") + test::kSmallAreaKeys +
+                                       "fires:\n  - {lat: 45.00230, lon: 7.00480, start_s: 10}\n";
 
 class SweepTest : public ::testing::Test {
  protected:
@@ -171,8 +164,7 @@ TEST_F(SweepTest, ASweepFileNamedRelativelyGivesItsRunsAbsoluteGeoJsonPaths) {
   const std::filesystem::path relative_dir =
       std::filesystem::relative(dir_, std::filesystem::current_path());
   ASSERT_FALSE(relative_dir.is_absolute());
-  const SweepSpec spec =
-      ParseSweep("scenario: geo.yaml\nseeds: [5]\n", "sweep.yaml", relative_dir);
+  const SweepSpec spec = ParseSweep("scenario: geo.yaml\nseeds: [5]\n", "sweep.yaml", relative_dir);
   const SweepPlan plan = MakePlan(spec);
   ASSERT_EQ(plan.runs.size(), 1U);
   const Scenario scenario =
