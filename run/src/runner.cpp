@@ -294,19 +294,20 @@ class Lockstep {
   /// Every vehicle landed after flying, crashed or lost, and none waits on the
   /// ground for its next sortie (the server's mission says).
   bool AllDown() const {
-    if (const server::MissionManager* mission = server_->mission()) {
-      const bool between_sorties = std::ranges::any_of(mission->vehicles(), [&](std::uint8_t id) {
-        const server::DroneProgress& progress = mission->progress(id);
-        return progress.phase == server::DronePhase::kSwapping ||
-               (progress.sorties_flown > 0 && (progress.phase == server::DronePhase::kUploading ||
-                                               progress.phase == server::DronePhase::kStarting));
-      });
-      if (between_sorties) return false;
-    }
-    return std::ranges::all_of(vehicles_, [&](const auto& v) {
+    // The vehicles first: while one flies (most steps) this ends at it.
+    const bool vehicles_down = std::ranges::all_of(vehicles_, [&](const auto& v) {
       const sim2d::FlightPhase phase = world().Truth(v->id()).phase;
       return phase == sim2d::FlightPhase::kCrashed || phase == sim2d::FlightPhase::kLost ||
              (phase == sim2d::FlightPhase::kOnGround && v->mode() == radio::FlightMode::kLanded);
+    });
+    if (!vehicles_down) return false;
+    const server::MissionManager* mission = server_->mission();
+    if (mission == nullptr) return true;
+    return std::ranges::none_of(mission->vehicles(), [&](std::uint8_t id) {
+      const server::DroneProgress& progress = mission->progress(id);
+      return progress.phase == server::DronePhase::kSwapping ||
+             (progress.sorties_flown > 0 && (progress.phase == server::DronePhase::kUploading ||
+                                             progress.phase == server::DronePhase::kStarting));
     });
   }
 

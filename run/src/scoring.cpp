@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <string>
 #include <unordered_set>
+#include <utility>
 
 #include "fireswarm/common/north_east.hpp"
 #include "fireswarm/server/vehicle_task.hpp"
@@ -180,20 +182,42 @@ void Scorer::ObserveSeparation(const sim2d::World& world) {
   const auto stride = std::max<std::int64_t>(1, std::llround(kSeparationSampleS / world.step_s()));
   if (steps_ % stride != 0) return;
   const std::span<const sim2d::VehicleTruth> truths = world.Truths();
+  // A sweep along east: only pairs closer in east than the closest pair so
+  // far can be closer, so each drone meets its few neighbours, not all of them.
+  by_east_.clear();
   for (std::size_t i = 0; i < truths.size(); ++i) {
-    if (!Flying(truths[i])) continue;
-    for (std::size_t j = i + 1; j < truths.size(); ++j) {
-      if (!Flying(truths[j])) continue;
-      const double dh = (truths[i].position_m - truths[j].position_m).norm();
-      const double d = std::hypot(dh, truths[i].altitude_m - truths[j].altitude_m);
-      if (!separation_seen_ || d < min_separation_m_) {
-        min_separation_m_ = d;
-        closest_ = {world.time_s(), truths[i].id, truths[j].id, d, truths[i].altitude_m,
-                    truths[j].altitude_m};
+    if (Flying(truths[i])) by_east_.push_back(i);
+  }
+  std::ranges::sort(by_east_, [&](std::size_t a, std::size_t b) {
+    return std::pair(truths[a].position_m.x(), a) < std::pair(truths[b].position_m.x(), b);
+  });
+  // The closest pair of this sample, ties to the lower index pair (as a scan
+  // over all pairs in index order would find it).
+  std::optional<std::pair<std::size_t, std::size_t>> best;
+  double best_m = separation_seen_ ? min_separation_m_ : std::numeric_limits<double>::infinity();
+  for (std::size_t a = 0; a < by_east_.size(); ++a) {
+    const sim2d::VehicleTruth& first = truths[by_east_[a]];
+    for (std::size_t b = a + 1; b < by_east_.size(); ++b) {
+      const sim2d::VehicleTruth& second = truths[by_east_[b]];
+      if (second.position_m.x() - first.position_m.x() > best_m) break;
+      const double dh = (first.position_m - second.position_m).norm();
+      const double d = std::hypot(dh, first.altitude_m - second.altitude_m);
+      const std::pair<std::size_t, std::size_t> pair = std::minmax(by_east_[a], by_east_[b]);
+      const bool first_seen = !separation_seen_ && !best;
+      if (first_seen || d < best_m || (best && d == best_m && pair < *best)) {
+        best_m = d;
+        best = pair;
       }
-      separation_seen_ = true;
     }
   }
+  if (!best) return;
+  // Across samples the earliest of equal minima stays.
+  if (separation_seen_ && !(best_m < min_separation_m_)) return;
+  const sim2d::VehicleTruth& i = truths[best->first];
+  const sim2d::VehicleTruth& j = truths[best->second];
+  min_separation_m_ = best_m;
+  closest_ = {world.time_s(), i.id, j.id, best_m, i.altitude_m, j.altitude_m};
+  separation_seen_ = true;
 }
 
 void Scorer::ObserveCollisions(const sim2d::World& world) {

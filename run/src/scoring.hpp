@@ -114,6 +114,7 @@ class Scorer {
   double min_separation_m_ = 0.0;
   ClosestApproach closest_;
   bool separation_seen_ = false;
+  std::vector<std::size_t> by_east_;  // ObserveSeparation's flying drones, by east
   std::int64_t steps_ = 0;
   double next_coverage_s_ = 0.0;
   double last_observed_s_ = 0.0;  // the last Observe()'s time

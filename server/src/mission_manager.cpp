@@ -38,7 +38,7 @@ MissionManager::MissionManager(radio::ChannelRouter& scheduler,
       throw std::invalid_argument("vehicle " + std::to_string(vehicle) +
                                   " has two missions in one plan");
     }
-    drones_.emplace(vehicle, DroneFor(std::move(mission)));
+    by_id_[vehicle] = &drones_.emplace(vehicle, DroneFor(std::move(mission))).first->second;
   }
 }
 
@@ -177,11 +177,11 @@ const DroneMission& MissionManager::mission_of(std::uint8_t vehicle) const {
 }
 
 const MissionManager::Drone& MissionManager::Find(std::uint8_t vehicle) const {
-  const auto found = drones_.find(vehicle);
-  if (found == drones_.end()) {
+  const Drone* drone = by_id_[vehicle];
+  if (drone == nullptr) {
     throw std::out_of_range("vehicle " + std::to_string(vehicle) + " has no mission");
   }
-  return found->second;
+  return *drone;
 }
 
 MissionManager::Drone& MissionManager::Find(std::uint8_t vehicle) {
@@ -280,9 +280,9 @@ void MissionManager::OnFinished(const radio::RequestFinished& finished,
 }
 
 void MissionManager::OnTelemetry(const radio::TelemetryReceived& received) {
-  const auto found = drones_.find(received.vehicle);
-  if (found == drones_.end()) return;
-  Drone& drone = found->second;
+  Drone* const found = by_id_[received.vehicle];
+  if (found == nullptr) return;
+  Drone& drone = *found;
   DroneProgress& progress = drone.progress;
   const radio::Telemetry& telemetry = received.telemetry;
   // On the ground for its pack, whatever mission it flew last (one handed over

@@ -225,11 +225,16 @@ void Server::OnEvent(const radio::SchedulerEvent& event, double now_s) {
   UpdateStartCommand(event);
   for (const std::uint8_t id : mission_->vehicles()) {
     // A new phase, or sorties cut in two (a low-battery return) in the same one.
-    JournaledPhase now{mission_->progress(id).phase, mission_->mission_of(id).sortie_starts};
+    // Compared in place: this runs for every drone on every radio event.
+    const DroneProgress& progress = mission_->progress(id);
+    const std::vector<std::size_t>& sortie_starts = mission_->mission_of(id).sortie_starts;
     const auto journaled = journaled_phases_.find(id);
-    if (journaled != journaled_phases_.end() && journaled->second == now) continue;
-    Record(now_s, PhaseChanged{id, now.phase, mission_->progress(id).sortie, now.sortie_starts});
-    journaled_phases_[id] = std::move(now);
+    if (journaled != journaled_phases_.end() && journaled->second.phase == progress.phase &&
+        journaled->second.sortie_starts == sortie_starts) {
+      continue;
+    }
+    Record(now_s, PhaseChanged{id, progress.phase, progress.sortie, sortie_starts});
+    journaled_phases_[id] = JournaledPhase{progress.phase, sortie_starts};
   }
 }
 

@@ -21,6 +21,7 @@
 // scheduler's events. No clock: times come with the events and with Step().
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -143,6 +144,10 @@ class MissionManager {
   /// Throws std::invalid_argument for a vehicle listed twice.
   MissionManager(radio::ChannelRouter& scheduler, std::vector<DroneMission> missions,
                  const MissionManagerConfig& config = {});
+  // by_id_ points into drones_'s nodes: a move takes the nodes along, a copy would not.
+  MissionManager(MissionManager&&) = default;
+  MissionManager(const MissionManager&) = delete;
+  MissionManager& operator=(const MissionManager&) = delete;
 
   /// Queues every uploading drone's chunks; each drone's start follows its last
   /// chunk's ack.
@@ -264,6 +269,9 @@ class MissionManager {
   radio::ChannelRouter& scheduler_;
   MissionManagerConfig config_;
   std::map<std::uint8_t, Drone> drones_;
+  // drones_ by receiver ID, for Find in O(1): the server asks for every drone
+  // on every radio event. Map nodes stay put, also when the manager moves.
+  std::array<Drone*, 256> by_id_{};
   struct Pending {
     std::uint8_t vehicle = 0;
     int chunk = -1;  // -1: the start command
