@@ -189,6 +189,9 @@ void PrintSummary(const run::RunResult& result) {
   std::cout << "  fires confirmed " << confirmed << " / " << report.fires.size()
             << ", false tracks " << report.false_tracks.size() << ", coverage "
             << 100.0 * report.coverage << " %, collisions " << report.collisions.size() << "\n";
+  if (result.server_restarts > 0) {
+    std::cout << "  server restarted from its journal " << result.server_restarts << " times\n";
+  }
   int planned = 0;
   int flown = 0;
   int swaps = 0;

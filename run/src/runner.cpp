@@ -109,7 +109,7 @@ server::ServerConfig MakeServerConfig(const Scenario& scenario, const RunOptions
 }
 
 radio::ChannelConfig MakeChannelConfig(const Scenario& scenario, std::size_t channel,
-                                      const radio::LinkTiming& timing) {
+                                       const radio::LinkTiming& timing) {
   radio::ChannelConfig config;
   config.baud = timing.baud;
   config.bits_per_byte = timing.bits_per_byte;
@@ -259,6 +259,14 @@ class Lockstep {
     server_ =
         std::make_unique<server::Server>(server::Server::Restore(server_config_, frame_, entries));
   }
+  /// Whether the server's radio is off the air on every channel: a server can
+  /// only be replaced between its transmissions (a dying server's modem still
+  /// sends what it was given; the new one's first burst comes after it).
+  bool ServerRadioQuiet() const {
+    return std::ranges::all_of(radios_, [](const auto& loop) {
+      return loop->channel().TransmittingUntil(loop->master_radio()) <= loop->channel().now();
+    });
+  }
   /// The busiest channel's airtime (one channel: its airtime).
   Nanos BusiestAirtime() const {
     Nanos busiest{0};
@@ -396,15 +404,31 @@ RunResult RunScenario(const Scenario& scenario, const RunOptions& options) {
     options.progress(progress);
   };
   constexpr double kEps = 1e-9;
+  // The scenario's server restarts (faults of kind server_restart), in time order.
+  std::vector<double> restarts_at_s;
+  for (const FaultSpec& fault : scenario.faults) {
+    if (fault.kind == FaultKind::kServerRestart) restarts_at_s.push_back(fault.at_s);
+  }
+  std::ranges::sort(restarts_at_s);
+  std::size_t restarts_done = 0;
+  bool drilled = false;  // RunOptions::restart_server_when's one restart
   while (run.time_s() < scenario.duration_s - kEps) {
     run.Step();
     const double t_s = run.time_s();
+    // At its time, or just after: once the server's radio is off the air.
+    for (; restarts_done < restarts_at_s.size() && t_s + kEps >= restarts_at_s[restarts_done] &&
+           run.ServerRadioQuiet();
+         ++restarts_done) {
+      run.RestartServer();
+      ++result.server_restarts;
+    }
     if (options.on_step) options.on_step(t_s, run.server());
-    if (options.restart_server_when && result.server_restarts == 0) {
+    if (options.restart_server_when && !drilled) {
       run.KeepJournal();
       if (options.restart_server_when(t_s, run.server())) {
         run.RestartServer();
         ++result.server_restarts;
+        drilled = true;
       }
     }
     scorer.Observe(t_s, run.simulation(), run.server());
@@ -433,9 +457,8 @@ RunResult RunScenario(const Scenario& scenario, const RunOptions& options) {
   separation.releases = traffic.counts().releases;
   for (const server::Conflict& c : traffic.conflicts()) {
     if (c.outcome != server::ConflictOutcome::kLostSeparation) continue;
-    separation.lost.push_back({c.detected_s, c.vehicle_a, c.vehicle_b,
-                               c.observed_min_separation_m, server::ToString(c.resolution),
-                               c.mover});
+    separation.lost.push_back({c.detected_s, c.vehicle_a, c.vehicle_b, c.observed_min_separation_m,
+                               server::ToString(c.resolution), c.mover});
   }
   result.state_hash = run.simulation().StateHash();
   result.mission_state = server::ToString(run.server().state());

@@ -12,8 +12,9 @@ using internal::Mapping;
 using internal::Range;
 
 // Indexed by the enums' values (scenario.hpp lists them in this order).
-constexpr std::array<std::string_view, 7> kFaultKindNames{
-    "stream_cut", "frozen", "bias", "extra_noise", "ballast", "total_loss", "radio_silent"};
+constexpr std::array<std::string_view, 8> kFaultKindNames{
+    "stream_cut", "frozen",     "bias",         "extra_noise",
+    "ballast",    "total_loss", "radio_silent", "server_restart"};
 constexpr std::array<std::string_view, 4> kFaultSensorNames{"gps", "baro", "attitude", "battery"};
 
 bool IsSensorFault(FaultKind kind) {
@@ -107,18 +108,30 @@ FaultSpec ReadFault(const Field& field, const Scenario& scenario) {
   const Mapping fault(field, {"vehicle", "at_s", "kind", "duration_s", "sensor", "bias",
                               "noise_factor", "ballast_offset_m"});
   FaultSpec out;
-  const Field vehicle = fault.Required("vehicle");
-  out.vehicle = static_cast<int>(vehicle.Integer(kMinReceiverId, kMaxReceiverId));
-  const std::vector<int> ids = scenario.fleet.ReceiverIds();
-  if (out.vehicle < ids.front() || out.vehicle > ids.back()) {
-    vehicle.Fail("is not one of the fleet's receiver IDs " + std::to_string(ids.front()) + ".." +
-                 std::to_string(ids.back()) + ", got " + std::to_string(out.vehicle));
+  out.kind = static_cast<FaultKind>(fault.Required("kind").OneOf(kFaultKindNames));
+  const bool server_fault = out.kind == FaultKind::kServerRestart;
+  if (server_fault) {
+    if (const std::optional<Field> vehicle = fault.Find("vehicle")) {
+      vehicle->Fail("server_restart concerns the server: it takes no vehicle");
+    }
+  } else {
+    const Field vehicle = fault.Required("vehicle");
+    out.vehicle = static_cast<int>(vehicle.Integer(kMinReceiverId, kMaxReceiverId));
+    const std::vector<int> ids = scenario.fleet.ReceiverIds();
+    if (out.vehicle < ids.front() || out.vehicle > ids.back()) {
+      vehicle.Fail("is not one of the fleet's receiver IDs " + std::to_string(ids.front()) + ".." +
+                   std::to_string(ids.back()) + ", got " + std::to_string(out.vehicle));
+    }
   }
   out.at_s = fault.Required("at_s").Number(Range{0.0, scenario.duration_s, false, true});
-  out.kind = static_cast<FaultKind>(fault.Required("kind").OneOf(kFaultKindNames));
   if (const std::optional<Field> duration = fault.Find("duration_s")) {
     if (out.kind == FaultKind::kTotalLoss) {
       duration->Fail("total_loss is permanent: it takes no duration_s");
+    }
+    if (server_fault) {
+      duration->Fail(
+          "server_restart is instant (the new server takes over at once): it takes "
+          "no duration_s");
     }
     out.duration_s = duration->Number(Range{0.0, internal::kMaxDurationS, true});
   }

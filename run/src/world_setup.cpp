@@ -75,6 +75,7 @@ sim2d::FaultKind ToSim(FaultKind kind) {
       return sim2d::FaultKind::kBallast;
     case FaultKind::kTotalLoss:
     case FaultKind::kRadioSilent:
+    case FaultKind::kServerRestart:  // the runner's, like kRadioSilent: never passed on
       return sim2d::FaultKind::kTotalLoss;
   }
   return sim2d::FaultKind::kStreamCut;
@@ -277,7 +278,8 @@ sim2d::SimulationConfig MakeSimulationConfig(const Scenario& scenario,
         std::max(battery.capacity_wh, cruise_w * scenario.fleet.endurance_s / kSecondsPerHour /
                                           (1.0 - kBatteryLeftAfterSortie));
     for (const FaultSpec& fault : scenario.faults) {
-      if (fault.vehicle == id && fault.kind != FaultKind::kRadioSilent) {
+      if (fault.vehicle == id && fault.kind != FaultKind::kRadioSilent &&
+          fault.kind != FaultKind::kServerRestart) {
         vehicle.faults.push_back(ToSim(fault));
       }
     }

@@ -150,11 +150,10 @@ TEST(RunScenario, ReportJsonHasTheContractKeys) {
   const nlohmann::ordered_json j = ToJson(SmallFireRun().report);
   std::vector<std::string> keys;
   for (const auto& item : j.items()) keys.push_back(item.key());
-  EXPECT_EQ(keys, (std::vector<std::string>{"fires", "false_tracks", "tracks", "investigations",
-                                            "coverage", "coverage_over_time", "collisions",
-                                            "min_separation_m", "separation", "radio", "vehicles",
-                                            "sim_seconds",
-                                            "wall_seconds", "real_time_factor", "expect"}));
+  EXPECT_EQ(keys, (std::vector<std::string>{
+                      "fires", "false_tracks", "tracks", "investigations", "coverage",
+                      "coverage_over_time", "collisions", "min_separation_m", "separation", "radio",
+                      "vehicles", "sim_seconds", "wall_seconds", "real_time_factor", "expect"}));
   std::vector<std::string> fire_keys;
   for (const auto& item : j["fires"][0].items()) fire_keys.push_back(item.key());
   EXPECT_EQ(fire_keys,
@@ -295,6 +294,24 @@ TEST(RunScenario, RadioSilentVehicleNeitherHearsNorIsHeard) {
   EXPECT_GT(report.vehicles.at(1).distance_m, 100.0);
   EXPECT_EQ(report.radio.telemetry_age_p50_p99_s.count(2), 0U);
   EXPECT_EQ(report.radio.telemetry_age_p50_p99_s.count(1), 1U);
+}
+
+// The server dies 20 times in the mission's first seconds, while it uploads the
+// missions (its radio busy most of the time), and a new one takes over from its
+// journal each time: each restart waits for the server's radio to fall quiet
+// (one started inside the old server's transmission threw), and the drones still
+// get their missions and fly.
+TEST(RunScenario, ServerRestartFaultsReplaceTheServerBetweenItsTransmissions) {
+  std::string faults = "faults:\n";
+  for (int k = 0; k < 20; ++k) {
+    faults += "  - {at_s: " + std::to_string(1.0 + 0.25 * k) + ", kind: server_restart}\n";
+  }
+  const RunResult result = RunScenario(SmallArea(faults));
+  EXPECT_EQ(result.server_restarts, 20);
+  ASSERT_EQ(result.report.vehicles.size(), 2U);
+  EXPECT_GT(result.report.vehicles.at(1).distance_m, 100.0);
+  EXPECT_GT(result.report.vehicles.at(2).distance_m, 100.0);
+  EXPECT_EQ(result.report.radio.reports_lost, 0U);
 }
 
 // The separation, lost-report and collision expectations judged on a real run:

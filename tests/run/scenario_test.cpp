@@ -541,7 +541,15 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"FaultUnknownKind", Minimal("faults: [{vehicle: 1, at_s: 5, kind: explode}]\n"),
                  "faults[0].kind",
                  "must be one of stream_cut|frozen|bias|extra_noise|ballast|total_loss|"
-                 "radio_silent, got explode"},
+                 "radio_silent|server_restart, got explode"},
+        BadInput{"ServerRestartWithAVehicle",
+                 Minimal("faults: [{vehicle: 1, at_s: 5, kind: server_restart}]\n"),
+                 "faults[0].vehicle", "server_restart concerns the server: it takes no vehicle"},
+        BadInput{"ServerRestartWithADuration",
+                 Minimal("faults: [{at_s: 5, kind: server_restart, duration_s: 10}]\n"),
+                 "faults[0].duration_s", "server_restart is instant"},
+        BadInput{"VehicleFaultWithoutAVehicle", Minimal("faults: [{at_s: 5, kind: total_loss}]\n"),
+                 "faults[0].vehicle", "missing (required)"},
         BadInput{"FaultUnknownVehicle",
                  Minimal("faults: [{vehicle: 3, at_s: 5, kind: total_loss}]\n"),
                  "faults[0].vehicle", "is not one of the fleet's receiver IDs 1..2, got 3"},
@@ -664,6 +672,7 @@ TEST(ScenarioNames, RoundTripTheEnums) {
   EXPECT_EQ(ToString(FaultKind::kStreamCut), "stream_cut");
   EXPECT_EQ(ToString(FaultKind::kTotalLoss), "total_loss");
   EXPECT_EQ(ToString(FaultKind::kRadioSilent), "radio_silent");
+  EXPECT_EQ(ToString(FaultKind::kServerRestart), "server_restart");
   EXPECT_EQ(ToString(FaultSensor::kBattery), "battery");
   EXPECT_EQ(ToString(planner::PlannerKind::kLawnmower), "lawnmower");
   EXPECT_EQ(ToString(planner::PlannerKind::kOmpl), "ompl");
@@ -713,6 +722,12 @@ TEST(RepositoryScenarios, RadioLossLosesATenthAndNoReport) {
   EXPECT_DOUBLE_EQ(s.radio.loss, 0.1);
   EXPECT_FALSE(s.fires.empty());
   EXPECT_EQ(s.expect.max_reports_lost, 0);
+  // ... also across two server restarts.
+  ASSERT_EQ(s.faults.size(), 2U);
+  for (const FaultSpec& fault : s.faults) {
+    EXPECT_EQ(fault.kind, FaultKind::kServerRestart);
+    EXPECT_EQ(fault.vehicle, 0);
+  }
 }
 
 TEST(RepositoryScenarios, LostDroneLosesOneMidMissionAndStillCovers) {

@@ -122,6 +122,10 @@ class SharedChannel {
   /// Called once per transmission when it is resolved, in resolution order.
   void SetAirObserver(std::function<void(const AirRecord&)> observer);
 
+  /// The end of `radio`'s latest transmission (0 before its first): it is on the
+  /// air until then. Throws std::out_of_range for an unknown radio.
+  Nanos TransmittingUntil(RadioId radio) const { return radios_.at(radio).transmitting_until; }
+
   Nanos now() const { return now_; }
   const ChannelConfig& config() const { return config_; }
   const ChannelStats& stats() const { return stats_; }

@@ -84,6 +84,8 @@ class ChannelLoop {
   void RunUntil(Nanos end);
 
   SharedChannel& channel() { return channel_; }
+  /// The master's (the server's) radio on channel().
+  RadioId master_radio() const { return master_radio_; }
   const SharedChannel& channel() const { return channel_; }
 
  private:

@@ -69,7 +69,7 @@ struct RunResult {
   /// sim2d's state hash at the end (truth, fire, camera frames): a determinism check.
   std::uint64_t state_hash = 0;
   std::string mission_state;  ///< the server's mission state at the end ("complete", ...)
-  int server_restarts = 0;    ///< by RunOptions::restart_server_when
+  int server_restarts = 0;    ///< by server_restart faults and RunOptions::restart_server_when
 };
 
 /// Plans the search (planner::PlanSearch with the fleet's planner and the

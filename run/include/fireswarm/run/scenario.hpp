@@ -33,9 +33,10 @@ class ScenarioError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-/// What a fault does to one vehicle. The first six are sim2d's FaultKind
-/// (sim2d/faults.hpp), by the same names; kRadioSilent has no sim2d counterpart:
-/// the runner stops carrying the vehicle's radio bytes both ways for the window.
+/// What a fault does to one vehicle, or to the server. The first six are sim2d's
+/// FaultKind (sim2d/faults.hpp), by the same names; kRadioSilent has no sim2d
+/// counterpart: the runner stops carrying the vehicle's radio bytes both ways for
+/// the window. kServerRestart is the server's: it concerns no vehicle.
 enum class FaultKind : std::uint8_t {
   kStreamCut,    ///< "stream_cut": the sensor delivers nothing
   kFrozen,       ///< "frozen": the sensor repeats its last value
@@ -44,6 +45,9 @@ enum class FaultKind : std::uint8_t {
   kBallast,      ///< "ballast": the centre of mass moves by `ballast_offset_m`
   kTotalLoss,    ///< "total_loss": the vehicle is gone for good at `at_s` (no duration)
   kRadioSilent,  ///< "radio_silent": the vehicle neither hears nor is heard
+  /// "server_restart": the server dies at `at_s` and a new one takes over at once,
+  /// restored from the old one's journal as `fireswarm serve --journal` would be
+  kServerRestart,
 };
 
 /// The sensor a sensor fault (stream_cut, frozen, bias, extra_noise) acts on;
@@ -174,7 +178,7 @@ struct WindSpec {
 
 /// One fault of one vehicle, active for at_s <= t < at_s + duration_s.
 struct FaultSpec {
-  int vehicle = 0;  ///< receiver ID, one of the fleet's
+  int vehicle = 0;  ///< receiver ID, one of the fleet's; 0 for kServerRestart
   double at_s = 0.0;
   FaultKind kind = FaultKind::kStreamCut;
   double duration_s = std::numeric_limits<double>::infinity();  ///< inf: to the end
