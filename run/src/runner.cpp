@@ -423,7 +423,8 @@ RunResult RunScenario(const Scenario& scenario, const RunOptions& options) {
       ++result.server_restarts;
     }
     if (options.on_step) options.on_step(t_s, run.server());
-    if (options.restart_server_when && !drilled) {
+    // The drill too replaces the server only between its transmissions.
+    if (options.restart_server_when && !drilled && run.ServerRadioQuiet()) {
       run.KeepJournal();
       if (options.restart_server_when(t_s, run.server())) {
         run.RestartServer();

@@ -203,8 +203,7 @@ void Scorer::ObserveSeparation(const sim2d::World& world) {
       const double dh = (first.position_m - second.position_m).norm();
       const double d = std::hypot(dh, first.altitude_m - second.altitude_m);
       const std::pair<std::size_t, std::size_t> pair = std::minmax(by_east_[a], by_east_[b]);
-      const bool first_seen = !separation_seen_ && !best;
-      if (first_seen || d < best_m || (best && d == best_m && pair < *best)) {
+      if (d < best_m || (best && d == best_m && pair < *best)) {
         best_m = d;
         best = pair;
       }

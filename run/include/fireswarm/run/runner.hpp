@@ -40,8 +40,8 @@ struct RunOptions {
   /// take effect from the next step on, as a command arriving then would.
   /// An exception it throws ends the run and leaves RunScenario.
   std::function<void(double t_s, server::Server& server)> on_step;
-  /// A restart drill: called after every step (after on_step) until it returns
-  /// true, once; the server is then replaced by one restored from the journal
+  /// A restart drill: called after every step (after on_step) on which the
+  /// server's radio is off the air, until it returns true, once; the server is then replaced by one restored from the journal
   /// its predecessor wrote (through the journal file's record format, as
   /// `fireswarm serve --journal` after a crash), which flies the rest of the
   /// mission. Empty: no restart.

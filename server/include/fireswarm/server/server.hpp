@@ -325,7 +325,6 @@ class Server {
   struct JournaledPhase {
     DronePhase phase = DronePhase::kUploading;
     std::vector<std::size_t> sortie_starts;
-    bool operator==(const JournaledPhase&) const = default;
   };
   std::map<std::uint8_t, JournaledPhase> journaled_phases_;
   // Where each drone was last seen on the ground with a fix, local metres: its
