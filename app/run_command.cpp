@@ -189,6 +189,7 @@ void PrintSummary(const run::RunResult& result) {
   std::cout << "  fires confirmed " << confirmed << " / " << report.fires.size()
             << ", false tracks " << report.false_tracks.size() << ", coverage "
             << 100.0 * report.coverage << " %, collisions " << report.collisions.size() << "\n";
+  if (result.missions > 1) std::cout << "  patrol: " << result.missions << " rounds started\n";
   if (result.server_restarts > 0) {
     std::cout << "  server restarted from its journal " << result.server_restarts << " times\n";
   }

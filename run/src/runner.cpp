@@ -215,21 +215,50 @@ class Lockstep {
       vehicles_.push_back(std::move(vehicle));
     }
     server_->LoadMission(planned.missions, 0.0, planned.airspace);
+    Start(0.0);
+  }
+
+  /// Loads the plan again as the server's next mission (a patrol's next round),
+  /// under the next free mission IDs, and starts it at `t_s`. The server must be
+  /// over the one before (Server::MissionOver).
+  void StartNextMission(const PlannedMissions& planned, double t_s) {
+    for (const std::uint8_t id : server_->mission()->vehicles()) {
+      sorties_flown_before_[id] += static_cast<int>(server_->mission()->progress(id).sorties_flown);
+    }
+    std::vector<server::DroneMission> missions = planned.missions;
+    const std::uint16_t first_id = server_->NextMissionId();
+    for (server::DroneMission& mission : missions) mission.mission_id = first_id;
+    server_->LoadMission(std::move(missions), t_s, planned.airspace);
+    Start(t_s);
+  }
+  /// Missions started so far (1 + a patrol's rounds).
+  int missions_started() const { return missions_started_; }
+
+  /// The operator's start of the loaded mission at `t_s`, signed as from outside
+  /// (each start its own nonce).
+  void Start(double t_s) {
+    // utime: simulated microseconds since the start (docs/lcm.md).
+    const auto utime = static_cast<std::int64_t>(std::llround(t_s * 1e6));
+    const server::SignedCommand start =
+        server::SignCommand(server::OperatorCommand{}, kRunnerOperator, runner_key_, utime,
+                            kStartNonce + missions_started_);
     std::string why;
-    // utime: simulated microseconds since the start (docs/lcm.md), 0 now.
-    const server::SignedCommand start = server::SignCommand(
-        server::OperatorCommand{}, kRunnerOperator, runner_key_, 0, kStartNonce);
-    if (!server_->HandleSigned(start, Nanos{0}, 0, &why)) {
+    if (!server_->HandleSigned(start, common::FromSeconds(t_s), utime, &why)) {
       throw std::logic_error("runner: the server refused to start the mission: " + why);
     }
+    ++missions_started_;
   }
 
   /// One lockstep step: sim2d and the vehicles, then the radio and the server up
-  /// to the step's end.
+  /// to the step's end; then what the server journaled is kept, as `fireswarm
+  /// serve` writes it to its file.
   void Step() {
     fleet_.Step();
     radio::RunLoopsUntil(loops_, fleet_.now());
+    KeepJournal();
   }
+  /// The journal a restart would read now.
+  std::size_t journal_entries() const { return journal_.size(); }
 
   double time_s() const { return simulation_.time_s(); }
   const sim2d::World& world() const { return simulation_.world(); }
@@ -295,7 +324,10 @@ class Lockstep {
       out.modes[v->id()] = state;
       out.reports_queued += v->endpoint().stats().reports_queued;
     }
+    // A patrol plans its sorties once and flies them every round.
     out.sorties_planned = sorties_planned_;
+    for (auto& [id, sorties] : out.sorties_planned) sorties *= missions_started_;
+    out.sorties_flown_before = sorties_flown_before_;
     return out;
   }
 
@@ -327,11 +359,13 @@ class Lockstep {
   server::ServerConfig server_config_;
   common::LocalFrame frame_;
   std::unique_ptr<server::Server> server_;
-  std::vector<server::JournalEntry> journal_;  // kept for a restart only
+  std::vector<server::JournalEntry> journal_;  // what a restart reads
   // One loop per channel, each stepping *server_ (its master) and its vehicles.
   std::vector<std::unique_ptr<radio::ChannelLoop>> radios_;
   std::vector<radio::ChannelLoop*> loops_;
   std::vector<std::unique_ptr<agents::Vehicle>> vehicles_;
+  int missions_started_ = 0;
+  std::map<int, int> sorties_flown_before_;  // a patrol's earlier rounds, by receiver ID
 };
 
 // When to end a run before its duration: the mission is complete (or aborted) and
@@ -401,6 +435,8 @@ RunResult RunScenario(const Scenario& scenario, const RunOptions& options) {
     progress.coverage = scorer.coverage();
     progress.fires_confirmed = scorer.confirmed_tracks();
     progress.fires_total = fires.size();
+    progress.missions = run.missions_started();
+    progress.journal_entries = run.journal_entries();
     options.progress(progress);
   };
   constexpr double kEps = 1e-9;
@@ -412,6 +448,7 @@ RunResult RunScenario(const Scenario& scenario, const RunOptions& options) {
   std::ranges::sort(restarts_at_s);
   std::size_t restarts_done = 0;
   bool drilled = false;  // RunOptions::restart_server_when's one restart
+  double next_patrol_s = scenario.patrol ? scenario.patrol->every_s : 0.0;
   while (run.time_s() < scenario.duration_s - kEps) {
     run.Step();
     const double t_s = run.time_s();
@@ -436,6 +473,17 @@ RunResult RunScenario(const Scenario& scenario, const RunOptions& options) {
     if (t_s + kEps >= next_progress_s) {
       report_progress();
       next_progress_s += options.progress_interval_s;
+    }
+    // A patrol flies the search again every_s after the last start, once the
+    // server is over that one and the crews have swapped the packs (as the
+    // operator would wait); it stops at the duration only.
+    if (scenario.patrol) {
+      if (t_s + kEps >= next_patrol_s && run.server().MissionOver() &&
+          run.server().FleetReady(t_s)) {
+        run.StartNextMission(planned, t_s);
+        next_patrol_s = t_s + scenario.patrol->every_s;
+      }
+      continue;
     }
     if (const std::optional<StopReason> reason = stop.Check(t_s, run)) {
       result.stop = *reason;
@@ -462,6 +510,7 @@ RunResult RunScenario(const Scenario& scenario, const RunOptions& options) {
                                server::ToString(c.resolution), c.mover});
   }
   result.state_hash = run.simulation().StateHash();
+  result.missions = run.missions_started();
   result.mission_state = server::ToString(run.server().state());
   const double wall_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();

@@ -200,6 +200,16 @@ WindSpec ReadWind(const Mapping& root) {
   return out;
 }
 
+std::optional<PatrolSpec> ReadPatrol(const Mapping& root) {
+  const std::optional<Field> field = root.Find("patrol");
+  if (!field) return std::nullopt;
+  const Mapping patrol(*field, {"every_s"});
+  PatrolSpec out;
+  out.every_s =
+      patrol.Required("every_s").Number(Range{internal::kMinPatrolEveryS, internal::kMaxDurationS});
+  return out;
+}
+
 double ReadMinCoverage(const Field& field) {
   const double value = field.Number();
   // A percentage is the likely mistake: say so.
@@ -266,7 +276,7 @@ Scenario ParseScenario(std::string_view text, const std::string& source_name,
   }
   const Mapping root(
       top, {"name", "seed", "duration_s", "area", "no_fly", "fleet", "radio", "separation", "fires",
-            "random_fires", "distractors", "wind", "faults", "expect"});
+            "random_fires", "distractors", "wind", "patrol", "faults", "expect"});
   Scenario scenario;
   scenario.source = source_name;
   const std::optional<Field> name = root.Find("name");
@@ -279,6 +289,7 @@ Scenario ParseScenario(std::string_view text, const std::string& source_name,
   scenario.radio = ReadRadio(root);
   scenario.separation = ReadSeparation(root);
   scenario.wind = ReadWind(root);
+  scenario.patrol = ReadPatrol(root);
   internal::ReadEvents(root, scenario);
   scenario.expect = ReadExpect(root);
   return scenario;

@@ -13,6 +13,8 @@ namespace fireswarm::run::internal {
 
 /// Sanity limits: beyond them a value is more likely a unit mistake than a plan.
 inline constexpr double kMaxDurationS = 86'400.0;  // one day of simulated time
+/// A patrol round more often than once a minute could not even take off.
+inline constexpr double kMinPatrolEveryS = 60.0;
 /// The fleet's ranges are the planner's (planner/plan.hpp, docs/limits.md). A
 /// battery swap longer than an hour is more likely minutes typed as seconds.
 inline constexpr double kMaxAltitudeM = planner::kMaxAltitudeM;
@@ -30,7 +32,9 @@ inline constexpr double kMaxFireSpacingM = 10'000.0;
 inline constexpr int kMaxRandomFires = 1'000;
 inline constexpr double kMaxDistractorRadiusM = 1'000.0;
 inline constexpr double kMinDistractorTempC = -50.0;
-inline constexpr double kMaxDistractorTempC = 1'000.0;
+/// The simulator's distractors are sun-heated ground, not fire: it refuses one
+/// above 200 °C (sim2d's temperature field), so the loader does, naming the key.
+inline constexpr double kMaxDistractorTempC = 200.0;
 inline constexpr double kMaxWindMps = 50.0;
 inline constexpr double kFullCircleDeg = 360.0;
 inline constexpr double kMaxNoiseFactor = 1'000.0;

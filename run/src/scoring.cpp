@@ -389,7 +389,9 @@ Report Scorer::Finish(const sim2d::World& world, const server::Server& server,
     vehicle.sorties_planned = planned != final_state.sorties_planned.end() ? planned->second : 0;
     const server::TaskView task =
         server::TaskOf(server, static_cast<std::uint8_t>(id), final_state.sim_seconds);
-    vehicle.sorties_flown = task.sorties_flown;
+    const auto before = final_state.sorties_flown_before.find(id);
+    vehicle.sorties_flown = task.sorties_flown +
+                            (before != final_state.sorties_flown_before.end() ? before->second : 0);
     vehicle.sortie = task.sortie;
     for (const sim2d::WorldEvent& event : world.events()) {
       if (event.kind == sim2d::EventKind::kBatterySwap && event.vehicle_a == id) {

@@ -58,6 +58,9 @@ struct FinalState {
   std::map<int, std::string> modes;    ///< receiver ID -> flight mode name
   std::uint64_t reports_queued = 0;    ///< fire reports the vehicles queued
   std::map<int, int> sorties_planned;  ///< receiver ID -> sorties in the plan
+  /// receiver ID -> sorties flown in a patrol's rounds before the server's
+  /// current mission (which the server itself counts).
+  std::map<int, int> sorties_flown_before;
 };
 
 class Scorer {

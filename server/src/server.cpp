@@ -164,22 +164,75 @@ void Server::AddVehicle(int receiver_id, double now_s) {
 
 void Server::LoadMission(std::vector<DroneMission> missions, double now_s,
                          std::optional<AirspacePlan> airspace) {
-  if (mission_) throw std::invalid_argument("a mission is already loaded");
+  // A journal replay trusts the order it was recorded in (the registry has no
+  // telemetry then to tell whether the drones are down).
+  if (mission_ && !restoring_ && !MissionOver()) {
+    throw std::invalid_argument(std::string("a mission is already loaded and not over (") +
+                                ToString(state_) + ")");
+  }
+  const std::uint16_t first_id = NextMissionId();
   for (const DroneMission& m : missions) {
     if (!registry_.Contains(m.vehicle)) {
       throw std::invalid_argument("mission for vehicle " + std::to_string(m.vehicle) +
                                   ", which is not registered");
     }
+    // A vehicle takes an ID it flew before for a resend of that mission.
+    if (m.mission_id < first_id) {
+      throw std::invalid_argument("mission for vehicle " + std::to_string(m.vehicle) + " has ID " +
+                                  std::to_string(m.mission_id) + ", below the next free one (" +
+                                  std::to_string(first_id) + ")");
+    }
   }
   MissionLoaded loaded{missions, airspace};
   mission_.emplace(*scheduler_, std::move(missions), config_.mission);
   airspace_ = std::move(airspace);
+  // What belonged to the mission before, if any.
+  state_ = MissionState::kIdle;
+  start_command_id_ = 0;
+  handed_over_.clear();
+  journaled_phases_.clear();
+  if (coverage_) coverage_.emplace(config_.area, config_.no_fly);
   Record(now_s, std::move(loaded));
+}
+
+bool Server::MissionOver() const {
+  if (!mission_ || state_ == MissionState::kComplete) return true;
+  if (state_ != MissionState::kAborted) return false;
+  // Aborted: over once every drone of it is down or given up.
+  const std::vector<std::uint8_t> lost = registry_.LostAt(last_step_s_);
+  return std::ranges::all_of(mission_->vehicles(), [&](std::uint8_t id) {
+    if (std::ranges::find(lost, id) != lost.end()) return true;
+    const std::optional<radio::Telemetry>& telemetry = registry_.state(id).telemetry;
+    return !telemetry || telemetry->mode == radio::FlightMode::kIdle ||
+           telemetry->mode == radio::FlightMode::kLanded;
+  });
+}
+
+bool Server::FleetReady(double now_s) const {
+  return std::ranges::all_of(registry_.ids(), [&](std::uint8_t id) {
+    if (registry_.LinkAt(id, now_s) == LinkState::kLost) return true;
+    const std::optional<radio::Telemetry>& telemetry = registry_.state(id).telemetry;
+    const bool on_ground = telemetry && (telemetry->mode == radio::FlightMode::kLanded ||
+                                         telemetry->mode == radio::FlightMode::kIdle);
+    return on_ground && telemetry->battery_percent >= kFreshPackPercent &&
+           (telemetry->flags & radio::telemetry_flags::kLowBattery) == 0;
+  });
+}
+
+std::uint16_t Server::NextMissionId() const {
+  if (!mission_) return 1;
+  const std::uint16_t last = mission_->LastMissionId();
+  if (last == std::numeric_limits<std::uint16_t>::max()) {
+    throw std::invalid_argument("the mission IDs are used up (65535): restart the server with a "
+                                "new journal");
+  }
+  return static_cast<std::uint16_t>(last + 1);
 }
 
 std::vector<radio::Burst> Server::Step(common::Nanos now, std::size_t channel,
                                        std::span<const std::uint8_t> received) {
   const double now_s = common::ToSeconds(now);
+  last_step_s_ = now_s;
   if (mission_) mission_->Step(now, TakeOffGate());
   std::vector<radio::Burst> bursts = scheduler_->Step(now, channel, received);
   bytes_received_ += received.size();

@@ -535,7 +535,11 @@ INSTANTIATE_TEST_SUITE_P(
                  "random_fires.count", "missing (required)"},
         BadInput{"DistractorTooHot",
                  Minimal("distractors: [{lat: 46.2, lon: -74.6, temp_c: 5000}]\n"),
-                 "distractors[0].temp_c", "must be in [-50, 1000], got 5000"},
+                 "distractors[0].temp_c", "must be in [-50, 200], got 5000"},
+        // The simulator refused it, after the plan and without the file's name.
+        BadInput{"DistractorHotterThanTheSimulatorTakes",
+                 Minimal("distractors: [{lat: 46.2, lon: -74.6, temp_c: 300}]\n"),
+                 "distractors[0].temp_c", "must be in [-50, 200], got 300"},
         BadInput{"WindFromFullCircle", Minimal("wind: {from_deg: 360}\n"), "wind.from_deg",
                  "must be in [0, 360), got 360"},
         BadInput{"FaultUnknownKind", Minimal("faults: [{vehicle: 1, at_s: 5, kind: explode}]\n"),

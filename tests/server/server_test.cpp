@@ -274,6 +274,63 @@ TEST(Server, RestoredFromItsJournalKeepsTracksAndPhasesAndUploadsNothingAgain) {
   EXPECT_EQ(restored.registry().ids(), fleet.server.registry().ids());
 }
 
+// A patrol: the server flies the next mission once the one before is complete,
+// under IDs none of the vehicles has flown, keeps the fire tracks, and a restart
+// from the journal of both comes back flying the second.
+TEST(Server, FliesMissionAfterMissionOnceTheOneBeforeIsOver) {
+  Fleet fleet;
+  fleet.air.vehicle(1).endpoint().QueueFireReport(ReportAt(150, 0, 0, 2'000));
+  fleet.RunFor(10 * kSecond);
+  ASSERT_EQ(fleet.server.fusion().tracks().size(), 1u);
+  const auto next_missions = [&] {
+    std::vector<DroneMission> missions = Missions({1, 2, 3});
+    for (DroneMission& m : missions) m.mission_id = fleet.server.NextMissionId();
+    return missions;
+  };
+  EXPECT_FALSE(fleet.server.MissionOver());
+  EXPECT_THROW(fleet.server.LoadMission(next_missions()), std::invalid_argument)
+      << "the first is still running";
+
+  for (std::uint8_t id = 1; id <= 3; ++id) {
+    radio::Telemetry landed = Searching(0, 0, 20'000);
+    landed.mode = radio::FlightMode::kLanded;
+    fleet.air.vehicle(id).endpoint().SetTelemetry(landed);
+  }
+  fleet.air.Run(fleet.server, fleet.air.channel().now() + 20 * kSecond,
+                [&] { return fleet.server.state() == MissionState::kComplete; });
+  ASSERT_EQ(fleet.server.state(), MissionState::kComplete);
+  ASSERT_TRUE(fleet.server.MissionOver());
+  EXPECT_THROW(fleet.server.LoadMission(Missions({1, 2, 3})), std::invalid_argument)
+      << "ID 1 is the first mission's: a vehicle would take it for a resend";
+
+  const std::uint16_t second_id = fleet.server.NextMissionId();
+  EXPECT_GT(second_id, 1);
+  fleet.server.LoadMission(next_missions());
+  EXPECT_EQ(fleet.server.state(), MissionState::kIdle);
+  ASSERT_TRUE(fleet.server.Handle({Kind::kStart, 0, {}, 0.0, "test"}, fleet.air.channel().now()));
+  for (std::uint8_t id = 1; id <= 3; ++id) {
+    radio::Telemetry searching = Searching(0, 0, 40'000);
+    searching.mission_id = second_id;
+    fleet.air.vehicle(id).endpoint().SetTelemetry(searching);
+  }
+  fleet.air.Run(fleet.server, fleet.air.channel().now() + 60 * kSecond,
+                [&] { return fleet.server.state() == MissionState::kRunning; });
+  ASSERT_EQ(fleet.server.state(), MissionState::kRunning);
+  for (std::uint8_t id = 1; id <= 3; ++id) {
+    EXPECT_EQ(fleet.air.vehicle(id).starts_accepted(), 2) << "vehicle " << int{id};
+    EXPECT_EQ(LastOf(fleet.air.vehicle(id), radio::CommandType::kStartMission)->mission_id,
+              second_id);
+  }
+  EXPECT_EQ(fleet.server.fusion().tracks().size(), 1u) << "the tracks outlive the mission";
+
+  const Server restored =
+      Server::Restore(ServerConfig{}, kFrame, fleet.server.TakeJournalEntries());
+  EXPECT_EQ(restored.state(), MissionState::kRunning);
+  EXPECT_EQ(restored.NextMissionId(), fleet.server.NextMissionId());
+  EXPECT_EQ(restored.mission()->mission_of(2).mission_id, second_id);
+  EXPECT_EQ(restored.fusion().tracks(), fleet.server.fusion().tracks());
+}
+
 TEST(Server, ADroneGivenUpAsLostIsSentHomeWhenHeardAgain) {
   Air air(0.0);
   Server server(ServerConfig{}, kFrame);

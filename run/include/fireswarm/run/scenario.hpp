@@ -209,6 +209,13 @@ struct Expectations {
 };
 
 /// A whole scenario, checked and defaulted (see docs/scenario.md).
+/// `patrol`: the search flown again and again (a watch over the forest).
+struct PatrolSpec {
+  /// The next round starts this long after the last one started, s, or as soon as
+  /// that one is over when it took longer.
+  double every_s = 0.0;
+};
+
 struct Scenario {
   std::string source;  ///< the file name errors carry
   std::string name;    ///< defaults to the file's stem
@@ -229,6 +236,9 @@ struct Scenario {
   std::optional<RandomFiresSpec> random_fires;
   std::vector<DistractorSpec> distractors;
   WindSpec wind;
+  /// Absent: one mission, and the run may end when it is over. Present: round
+  /// after round until duration_s.
+  std::optional<PatrolSpec> patrol;
   std::vector<FaultSpec> faults;
   Expectations expect;
 };

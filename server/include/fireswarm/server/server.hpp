@@ -163,13 +163,27 @@ class Server {
   /// Registers a vehicle with the registry and the scheduler. Throws
   /// std::invalid_argument naming the ID when it is out of range or a duplicate.
   void AddVehicle(int receiver_id, double now_s = 0.0);
-  /// The mission to fly (one per registered vehicle at most). Throws
-  /// std::invalid_argument when a drone's vehicle is not registered or a mission
-  /// is already loaded.
+  /// The mission to fly (one per registered vehicle at most). A server flies
+  /// mission after mission (a patrol): the next can be loaded once the one before
+  /// is over (MissionOver), with IDs from NextMissionId() on; it starts idle, with
+  /// a new coverage grid, and the fire tracks and counters stay. Throws
+  /// std::invalid_argument when a drone's vehicle is not registered, a mission is
+  /// loaded and not over, or an ID is below NextMissionId().
   /// `airspace`: the layers AssignAirspace gave the missions, journaled with
   /// them and used for the legs the server makes up later (investigations).
   void LoadMission(std::vector<DroneMission> missions, double now_s = 0.0,
                    std::optional<AirspacePlan> airspace = std::nullopt);
+  /// No mission, or the loaded one is complete, or aborted with every drone of it
+  /// on the ground or given up as lost: the next one may be loaded.
+  bool MissionOver() const;
+  /// Every registered drone in touch (link not lost) reports itself on the ground
+  /// (landed or idle) with a fresh pack (mission_manager.hpp's kFreshPackPercent, no low-battery
+  /// flag): the fleet could fly a next mission now.
+  bool FleetReady(double now_s) const;
+  /// The lowest mission ID the next mission may use: every sortie and handed-over
+  /// mission of the one before has a lower one (1 without a mission). Throws
+  /// std::invalid_argument when the 16-bit IDs are used up.
+  std::uint16_t NextMissionId() const;
   /// The layers of the loaded mission, if it was given them.
   const std::optional<AirspacePlan>& airspace() const { return airspace_; }
 
@@ -338,6 +352,7 @@ class Server {
   std::deque<CommandRefused> recent_refusals_;
   std::uint64_t refusal_count_ = 0;
   bool restoring_ = false;
+  double last_step_s_ = 0.0;  // the latest Step's time, s
   std::uint64_t bytes_sent_ = 0;
   std::uint64_t bytes_received_ = 0;
 };
