@@ -93,7 +93,8 @@ server::ServerConfig MakeServerConfig(const Scenario& scenario, const RunOptions
     config.channels.push_back(TimingOf(scenario.radio.ChannelAt(k)));
   }
   for (const RadioConfig::ChannelOverride& o : scenario.radio.channel_overrides) {
-    for (const int id : o.vehicles) config.vehicle_channels[id] = static_cast<std::size_t>(o.channel);
+    for (const int id : o.vehicles)
+      config.vehicle_channels[id] = static_cast<std::size_t>(o.channel);
   }
   // The zones the plan kept out of, in the same local frame as the server's.
   config.no_fly = scenario.area.no_fly;
@@ -229,6 +230,9 @@ class Lockstep {
     const std::uint16_t first_id = server_->NextMissionId();
     for (server::DroneMission& mission : missions) mission.mission_id = first_id;
     server_->LoadMission(std::move(missions), t_s, planned.airspace);
+    // What only the rounds before needed goes: the journal stays one round long.
+    KeepJournal();
+    journal_ = server::CompactJournal(std::move(journal_));
     Start(t_s);
   }
   /// Missions started so far (1 + a patrol's rounds).

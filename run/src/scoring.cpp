@@ -96,6 +96,39 @@ double Percentile(std::vector<double> values, double p) {
   return values[std::min(index, values.size() - 1)];
 }
 
+std::size_t AgeHistogram::BinOf(double age_s) {
+  constexpr std::size_t kFine = 1'000;  // 10 ms each, to 10 s
+  constexpr std::size_t kCoarse = 990;  // 1 s each, to 1000 s
+  if (!(age_s > 0.0)) return 0;
+  if (age_s < 10.0) return std::min(kFine - 1, static_cast<std::size_t>(age_s * 100.0));
+  if (age_s < 1'000.0) return kFine + std::min(kCoarse - 1, static_cast<std::size_t>(age_s - 10.0));
+  return kFine + kCoarse;  // beyond: one bin
+}
+
+double AgeHistogram::UpperEdgeS(std::size_t bin) {
+  if (bin < 1'000) return static_cast<double>(bin + 1) / 100.0;
+  if (bin < 1'990) return 10.0 + static_cast<double>(bin - 1'000 + 1);
+  return std::numeric_limits<double>::infinity();
+}
+
+void AgeHistogram::Add(double age_s) {
+  if (bins_.empty()) bins_.assign(1'991, 0);
+  ++bins_[BinOf(age_s)];
+  ++count_;
+  max_s_ = std::max(max_s_, age_s);
+}
+
+double AgeHistogram::Percentile(double p) const {
+  if (count_ == 0) return 0.0;
+  const double rank = std::max(1.0, std::ceil(p * static_cast<double>(count_)));
+  std::uint64_t seen = 0;
+  for (std::size_t bin = 0; bin < bins_.size(); ++bin) {
+    seen += bins_[bin];
+    if (static_cast<double>(seen) >= rank) return std::min(UpperEdgeS(bin), max_s_);
+  }
+  return max_s_;
+}
+
 Scorer::Scorer(const Scenario& scenario, std::vector<FireSpec> fires)
     : scenario_(scenario),
       fires_(std::move(fires)),
@@ -136,7 +169,16 @@ void Scorer::Observe(double t_s, const sim2d::Simulation& simulation,
   if (t_s + kEps >= next_track_s_) {
     next_track_s_ += kTrackSampleS;
     for (const sim2d::VehicleTruth& truth : world.Truths()) {
-      traces_[truth.id].track.push_back(ToLatLon(world.frame(), truth.position_m));
+      VehicleTrace& trace = traces_[truth.id];
+      if (++trace.track_skipped < trace.track_every) continue;
+      trace.track_skipped = 0;
+      trace.track.push_back(ToLatLon(world.frame(), truth.position_m));
+      if (trace.track.size() < kMaxTrackPoints) continue;
+      // Full: every other point goes (the first stays), and the interval doubles.
+      std::size_t kept = 0;
+      for (std::size_t k = 0; k < trace.track.size(); k += 2) trace.track[kept++] = trace.track[k];
+      trace.track.resize(kept);
+      trace.track_every *= 2;
     }
   }
   if (t_s + kEps >= next_second_s_) {
@@ -146,7 +188,7 @@ void Scorer::Observe(double t_s, const sim2d::Simulation& simulation,
       const auto id = static_cast<std::uint8_t>(truth.id);
       if (!server.registry().Contains(id)) continue;
       if (const std::optional<double> age = server.registry().TelemetryAgeS(id, t_s)) {
-        traces_[truth.id].telemetry_ages_s.push_back(*age);
+        traces_[truth.id].telemetry_ages_s.Add(*age);
       }
     }
   }
@@ -329,8 +371,8 @@ void Scorer::ScoreRadio(const server::Server& server, const FinalState& final_st
       final_state.sim_seconds > 0.0 ? final_state.radio_busy_s / final_state.sim_seconds : 0.0;
   for (const auto& [id, trace] : traces_) {
     if (trace.telemetry_ages_s.empty()) continue;
-    radio.telemetry_age_p50_p99_s[id] = {Percentile(trace.telemetry_ages_s, 0.5),
-                                         Percentile(trace.telemetry_ages_s, 0.99)};
+    radio.telemetry_age_p50_p99_s[id] = {trace.telemetry_ages_s.Percentile(0.5),
+                                         trace.telemetry_ages_s.Percentile(0.99)};
   }
   radio.retries = server.scheduler().stats().retries;
   // Detection times of every report the fusion holds, by (vehicle, report ID).

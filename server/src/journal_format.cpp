@@ -255,6 +255,10 @@ JournalEvent EventFrom(const std::string& kind, const nlohmann::json& data) {
     return InvestigationNotSent{data.at("track_id").get<std::int32_t>(),
                                 data.at("why").get<std::string>()};
   }
+  if (kind == "compacted") {
+    return JournalCompacted{data.at("next_command_id").get<std::int32_t>(),
+                            data.at("entries_dropped").get<std::uint64_t>()};
+  }
   if (kind == "recall") {
     return DroneRecalled{data.at("vehicle").get<std::uint8_t>(), data.at("why").get<std::string>()};
   }
@@ -278,7 +282,8 @@ std::string JournalKindOf(const JournalEntry& entry) {
                  [](const InvestigationNotSent&) -> std::string { return "no_investigation"; },
                  [](const DroneRecalled&) -> std::string { return "recall"; },
                  [](const SortieMoved&) -> std::string { return "sortie_moved"; },
-                 [](const CommandRefused&) -> std::string { return "command_refused"; }},
+                 [](const CommandRefused&) -> std::string { return "command_refused"; },
+                 [](const JournalCompacted&) -> std::string { return "compacted"; }},
       entry.event);
 }
 
@@ -342,6 +347,9 @@ nlohmann::json JournalDataOf(const JournalEntry& entry) {
           },
           [](const DroneRecalled& e) -> nlohmann::json {
             return {{"vehicle", e.vehicle}, {"why", e.why}};
+          },
+          [](const JournalCompacted& e) -> nlohmann::json {
+            return {{"next_command_id", e.next_command_id}, {"entries_dropped", e.entries_dropped}};
           },
           [](const SortieMoved& e) -> nlohmann::json {
             return {{"from", e.from}, {"taker", MissionsJson({e.taker}).front()}};

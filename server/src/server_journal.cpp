@@ -2,6 +2,7 @@
 // Server::Restore, which replays them to rebuild the core after a restart. Kept
 // apart from server.cpp, which runs the mission. The entries' file format is
 // journal_format.cpp's.
+#include <algorithm>
 #include <cstdint>
 #include <stdexcept>
 #include <string>
@@ -124,8 +125,47 @@ void Server::Replay(const JournalEntry& entry) {
             mission_->Replace(e.taker, /*send=*/false);
           },
           // A refused command changed nothing (the counters are this life's).
-          [](const CommandRefused&) {}},
+          [](const CommandRefused&) {},
+          [&](const JournalCompacted& e) {
+            if (e.next_command_id > 1) commands_.Reserve(e.next_command_id - 1);
+          }},
       entry.event);
+}
+
+std::vector<JournalEntry> CompactJournal(std::vector<JournalEntry> entries) {
+  std::size_t latest = entries.size();  // the latest mission's entry
+  std::size_t missions = 0;
+  for (std::size_t i = 0; i < entries.size(); ++i) {
+    if (!std::holds_alternative<MissionLoaded>(entries[i].event)) continue;
+    latest = i;
+    ++missions;
+  }
+  if (missions < 2) return entries;
+  std::vector<JournalEntry> out;
+  JournalCompacted compacted;
+  std::int32_t last_command_id = 0;
+  for (std::size_t i = 0; i < latest; ++i) {
+    JournalEntry& entry = entries[i];
+    if (const auto* command = std::get_if<CommandAccepted>(&entry.event)) {
+      last_command_id = std::max(last_command_id, command->command_id);
+    } else if (const auto* earlier = std::get_if<JournalCompacted>(&entry.event)) {
+      last_command_id = std::max(last_command_id, earlier->next_command_id - 1);
+      compacted.entries_dropped += earlier->entries_dropped;
+    }
+    const bool outlives = std::holds_alternative<VehicleAdded>(entry.event) ||
+                          std::holds_alternative<ReportFused>(entry.event) ||
+                          std::holds_alternative<TrackRejected>(entry.event);
+    if (outlives) {
+      out.push_back(std::move(entry));
+    } else if (!std::holds_alternative<JournalCompacted>(entry.event)) {
+      ++compacted.entries_dropped;
+    }
+  }
+  compacted.next_command_id = last_command_id + 1;
+  const JournalEntry& first_kept = entries[latest];
+  out.push_back(JournalEntry{first_kept.t_s, first_kept.radio_seq, compacted});
+  for (std::size_t i = latest; i < entries.size(); ++i) out.push_back(std::move(entries[i]));
+  return out;
 }
 
 Server Server::Restore(const ServerConfig& config, const common::LocalFrame& frame,

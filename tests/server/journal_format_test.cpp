@@ -69,6 +69,7 @@ TEST(JournalFormat, EveryEventComesBackAsItWasWritten) {
       {10.0, 11, CommandAccepted{OperatorCommand::Kind::kHold, 2, {}, "signed", 7, "ann", 123, -5}},
       {11.0, 12,
        CommandRefused{CommandVerdict::kStale, 6, 2, "ann", 1, -2, "stale: utime 1 is outside"}},
+      {12.0, 13, JournalCompacted{42, 1'234}},
   };
   for (const JournalEntry& entry : entries) {
     const JournalEntry back = RoundTrip(entry);

@@ -323,12 +323,34 @@ TEST(Server, FliesMissionAfterMissionOnceTheOneBeforeIsOver) {
   }
   EXPECT_EQ(fleet.server.fusion().tracks().size(), 1u) << "the tracks outlive the mission";
 
-  const Server restored =
-      Server::Restore(ServerConfig{}, kFrame, fleet.server.TakeJournalEntries());
-  EXPECT_EQ(restored.state(), MissionState::kRunning);
-  EXPECT_EQ(restored.NextMissionId(), fleet.server.NextMissionId());
-  EXPECT_EQ(restored.mission()->mission_of(2).mission_id, second_id);
-  EXPECT_EQ(restored.fusion().tracks(), fleet.server.fusion().tracks());
+  const std::vector<JournalEntry> journal = fleet.server.TakeJournalEntries();
+  const std::vector<JournalEntry> compacted = CompactJournal(journal);
+  EXPECT_LT(compacted.size(), journal.size());
+  EXPECT_EQ(std::ranges::count_if(compacted,
+                                  [](const JournalEntry& e) {
+                                    return std::holds_alternative<MissionLoaded>(e.event);
+                                  }),
+            1)
+      << "only the second mission";
+  EXPECT_EQ(CompactJournal(compacted).size(), compacted.size())
+      << "compacting twice changes nothing";
+  // Both the whole journal and the compacted one, through the file's record format.
+  for (const std::vector<JournalEntry>* entries : {&journal, &compacted}) {
+    std::vector<JournalEntry> read;
+    std::uint64_t seq = 0;
+    for (const JournalEntry& entry : *entries) {
+      read.push_back(JournalEntryOf(
+          JournalRecord{++seq, entry.t_s, JournalKindOf(entry), JournalDataOf(entry)}));
+    }
+    const Server restored = Server::Restore(ServerConfig{}, kFrame, read);
+    EXPECT_EQ(restored.state(), MissionState::kRunning);
+    EXPECT_EQ(restored.NextMissionId(), fleet.server.NextMissionId());
+    EXPECT_EQ(restored.mission()->mission_of(2).mission_id, second_id);
+    EXPECT_EQ(restored.mission()->progress(2).phase, DronePhase::kFlying);
+    EXPECT_EQ(restored.fusion().tracks(), fleet.server.fusion().tracks());
+    EXPECT_EQ(restored.next_command_id(), fleet.server.next_command_id())
+        << "no command ID given twice";
+  }
 }
 
 TEST(Server, ADroneGivenUpAsLostIsSentHomeWhenHeardAgain) {

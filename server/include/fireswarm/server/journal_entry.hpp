@@ -12,9 +12,9 @@
 #include <vector>
 
 #include "fireswarm/common/local_frame.hpp"
+#include "fireswarm/server/airspace.hpp"
 #include "fireswarm/server/command_auth.hpp"
 #include "fireswarm/server/fire_fusion.hpp"
-#include "fireswarm/server/airspace.hpp"
 #include "fireswarm/server/mission_manager.hpp"
 #include "fireswarm/server/mission_state.hpp"
 #include "fireswarm/server/operator_command.hpp"
@@ -130,10 +130,17 @@ struct DroneRecalled {
   std::string why;
 };
 
-using JournalEvent =
-    std::variant<VehicleAdded, MissionLoaded, CommandAccepted, PhaseChanged, LanesHandedOver,
-                 MissionStateChanged, ReportFused, TrackRejected, InvestigationOpened,
-                 InvestigationNotSent, DroneRecalled, SortieMoved, CommandRefused>;
+/// The journal was compacted (CompactJournal) here: the entries of the missions
+/// before were dropped, and what of them must outlive them is this.
+struct JournalCompacted {
+  std::int32_t next_command_id = 1;  ///< command IDs below were given: none is given twice
+  std::uint64_t entries_dropped = 0;
+};
+
+using JournalEvent = std::variant<VehicleAdded, MissionLoaded, CommandAccepted, PhaseChanged,
+                                  LanesHandedOver, MissionStateChanged, ReportFused, TrackRejected,
+                                  InvestigationOpened, InvestigationNotSent, DroneRecalled,
+                                  SortieMoved, CommandRefused, JournalCompacted>;
 
 /// One thing that must survive a restart, in the order it happened.
 struct JournalEntry {
@@ -143,5 +150,15 @@ struct JournalEntry {
   std::optional<std::uint16_t> radio_seq;
   JournalEvent event;
 };
+
+/// The journal of a server that flies mission after mission (a patrol), without
+/// what only the missions before the latest one needed: their uploads, phases,
+/// states, handovers, investigations and commands. Kept, in order: every vehicle,
+/// every fused report and rejected track (the fire tracks outlive the missions),
+/// one JournalCompacted entry (the next command ID, so none is given twice), then
+/// every entry from the latest mission's on. Restoring the result gives the same
+/// vehicles, tracks, mission, phases and state as restoring `entries`. Entries
+/// without a second mission are returned as they are.
+std::vector<JournalEntry> CompactJournal(std::vector<JournalEntry> entries);
 
 }  // namespace fireswarm::server
