@@ -64,7 +64,61 @@ Vehicle::Vehicle(const VehicleConfig& config)
       params_(MakeParamStore(config)),
       endpoint_(EndpointConfig(config), *this),
       detector_(config.detector.value_or(FireDetectorConfigFor(config.camera))) {
+  if (config_.storage) Reload(*config_.storage);
   ApplyParams();
+}
+
+void Vehicle::Reload(const NonVolatileStore& storage) {
+  for (const auto& [id, value] : storage.params()) params_.Write(id, value);
+  if (storage.missions()) missions_ = *storage.missions();
+  if (storage.endpoint()) endpoint_.Restore(*storage.endpoint());
+  endpoint_saved_at_ = endpoint_.state_changes();
+  const FlightRecord& flight = storage.flight();
+  active_mission_ = flight.active_mission;
+  home_ = flight.home;
+  low_battery_ = flight.low_battery;
+  mode_before_hold_ = flight.mode_before_hold;
+  resume_index_ = flight.waypoint_index;
+  rejoin_at_ = flight.rejoin_at;
+  // Before the first reading: altitudes are above the ground it took off from.
+  if (flight.baro_zero_m) estimator_.RestoreAltitudeZero(*flight.baro_zero_m);
+  if (flight.mode == radio::FlightMode::kIdle || flight.mode == radio::FlightMode::kLanded) {
+    mode_ = flight.mode;  // on the ground: nothing to resume
+  } else {
+    resume_ = flight;
+  }
+}
+
+FlightRecord Vehicle::flight_record() const {
+  FlightRecord flight;
+  flight.mode = mode_;
+  flight.mode_before_hold = mode_before_hold_;
+  flight.active_mission = active_mission_;
+  const bool on_route = mode_ == radio::FlightMode::kSearch && !rejoining_ && navigator_;
+  flight.waypoint_index = on_route ? navigator_->waypoint_index() : resume_index_;
+  flight.rejoin_at = rejoin_at_;
+  flight.home = home_;
+  flight.baro_zero_m = estimator_.altitude_zero_m();
+  flight.low_battery = low_battery_;
+  return flight;
+}
+
+void Vehicle::SaveFlight() {
+  // Until the stored flight is resumed, the store keeps it.
+  if (!config_.storage || resume_) return;
+  FlightRecord flight = flight_record();
+  if (flight != config_.storage->flight()) config_.storage->WriteFlight(flight);
+}
+
+void Vehicle::SaveEndpoint() {
+  if (!config_.storage || endpoint_.state_changes() == endpoint_saved_at_) return;
+  config_.storage->WriteEndpoint(endpoint_.state());
+  endpoint_saved_at_ = endpoint_.state_changes();
+}
+
+bool Vehicle::gps_lost() const {
+  const Estimate& state = estimator_.estimate();
+  return state.has_position && state.gps_age_s > kGpsLostAfterS;
 }
 
 void Vehicle::ApplyParams() {
@@ -108,11 +162,21 @@ std::vector<radio::Burst> Vehicle::OnRadio(Nanos now, std::span<const std::uint8
     last_heard_ = now;
     link_lost_ = false;
   }
+  // Before the replies go out: what they carry (sequence numbers, reports) and
+  // what the requests changed is stored by then.
+  SaveEndpoint();
+  SaveFlight();
   return replies;
 }
 
 radio::MissionAckStatus Vehicle::OnMissionChunk(const radio::MissionChunk& chunk) {
-  return missions_.OnChunk(chunk);
+  const radio::MissionAckStatus status = missions_.OnChunk(chunk);
+  // Each chunk is stored before it is acknowledged: a reboot mid-upload keeps
+  // the chunks the server will not send again.
+  if (config_.storage && status != radio::MissionAckStatus::kRejected) {
+    config_.storage->WriteMissions(missions_);
+  }
+  return status;
 }
 
 radio::ParamValue Vehicle::OnParamRead(const radio::ParamRead& read) {
@@ -121,14 +185,18 @@ radio::ParamValue Vehicle::OnParamRead(const radio::ParamRead& read) {
 
 radio::ParamValue Vehicle::OnParamWrite(const radio::ParamWrite& write) {
   radio::ParamValue value = params_.Write(write.param_id, write.value);
-  if (value.status == radio::ParamStatus::kOk) ApplyParams();
+  if (value.status == radio::ParamStatus::kOk) {
+    ApplyParams();
+    if (config_.storage) config_.storage->WriteParam(write.param_id, value.value);
+  }
   return value;
 }
 
 void Vehicle::ProcessFrame(Nanos now, const CameraFrame& frame) {
   const Estimate& state = estimator_.estimate();
-  // Frames from the ground or without a position and attitude locate nothing.
-  if (!Airborne() || !state.has_position || !state.has_attitude ||
+  // Frames from the ground or without a position and attitude locate nothing;
+  // nor do frames while the GPS is lost (the position is only a guess then).
+  if (!Airborne() || !state.has_position || !state.has_attitude || gps_lost() ||
       state.altitude_m < kMinDetectionAltitudeM) {
     return;
   }
@@ -162,6 +230,7 @@ void Vehicle::ProcessFrame(Nanos now, const CameraFrame& frame) {
     endpoint_.QueueFireReport(report);
     ++stats_.fires_detected;
   }
+  SaveEndpoint();  // a queued report survives a reboot until it is acknowledged
 }
 
 void Vehicle::UpdateTelemetry(Nanos now) {
@@ -187,7 +256,7 @@ void Vehicle::UpdateTelemetry(Nanos now) {
   if (missions_.complete() != nullptr) flags |= radio::telemetry_flags::kMissionValid;
   if (low_battery_) flags |= radio::telemetry_flags::kLowBattery;
   if (link_lost_) flags |= radio::telemetry_flags::kLinkLost;
-  if (state.has_position) flags |= radio::telemetry_flags::kGpsFix;
+  if (state.has_position && !gps_lost()) flags |= radio::telemetry_flags::kGpsFix;
   telemetry.flags = flags;
   telemetry.mission_id = active_mission_;
   // The mission's waypoint, also while the navigator flies a hold, a circle or

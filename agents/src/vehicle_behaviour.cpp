@@ -276,12 +276,58 @@ radio::CommandResult Vehicle::OnCommand(const radio::Command& command) {
   return CommandResult::kUnsupported;
 }
 
+bool Vehicle::ResumeFlight(Nanos now) {
+  const Estimate& state = estimator_.estimate();
+  if (!navigator_ || !state.has_attitude || !state.has_altitude) return false;
+  const FlightRecord flight = *resume_;
+  resume_.reset();
+  // Reload() restored the mission, home, altitude zero and the waypoint to resume
+  // at; the mode is entered here, now that there is a position to start from.
+  switch (flight.mode) {
+    case FlightMode::kTakeoff: {
+      // On with the climb over home (entering the mode again would take home
+      // and the altitude zero here, in the air).
+      mode_ = FlightMode::kTakeoff;
+      mode_since_ = now;
+      RoutePoint over_home;
+      over_home.position = home_.value_or(estimator_.position());
+      over_home.altitude_m = ClimbOutAltitudeM();
+      StartRoute({over_home}, 0);
+      break;
+    }
+    case FlightMode::kSearch:
+    case FlightMode::kInvestigate:
+      // The search resumes where it was (an investigation's circle was the
+      // server's order of the moment: the server sees the search and may send
+      // it again); back to the point it left the route first, if it had.
+      EnterMode(missions_.IsComplete(active_mission_) ? FlightMode::kSearch : FlightMode::kHold,
+                now);
+      break;
+    case FlightMode::kHold:
+    case FlightMode::kReturnToLaunch:
+    case FlightMode::kLand:
+      EnterMode(flight.mode, now);
+      break;
+    case FlightMode::kIdle:
+    case FlightMode::kLanded:
+      mode_ = flight.mode;
+      break;
+  }
+  return true;
+}
+
 void Vehicle::CheckSafety(Nanos now) {
   const Estimate& state = estimator_.estimate();
   if (!Airborne() && low_battery_ && state.battery_fraction >= kFreshPackFraction) {
     low_battery_ = false;
   }
   if (!Airborne() || mode_ == FlightMode::kLand) return;
+  // No GPS for long: come down where it is rather than drift until the pack is empty.
+  if (state.has_position && state.gps_age_s > kGpsLostLandAfterS) {
+    ++stats_.gps_lost_landings;
+    EnterMode(FlightMode::kLand, now);
+    return;
+  }
   if (state.battery_fraction < Param(ParamId::kRtlBatteryFraction) && !low_battery_) {
     low_battery_ = true;
     if (mode_ != FlightMode::kReturnToLaunch) {
@@ -302,7 +348,9 @@ void Vehicle::CheckSafety(Nanos now) {
 
 CascadeSetpoint Vehicle::Behave(Nanos now, std::optional<common::Micros> nav_dt) {
   const Estimate& state = estimator_.estimate();
-  if (nav_dt) {
+  const bool no_fix = gps_lost();
+  // Without GPS the navigator would steer by a guess: it waits for fixes.
+  if (nav_dt && !no_fix) {
     const NavigationInput input = NavInput();
     const bool circling = mode_ == FlightMode::kInvestigate && !investigate_approach_;
     navigation_setpoint_ =
@@ -374,6 +422,13 @@ CascadeSetpoint Vehicle::Behave(Nanos now, std::optional<common::Micros> nav_dt)
     case FlightMode::kLanded:
       break;
   }
+  if (no_fix) {
+    // Level, on its heading, at the altitude it flies to: it drifts with the wind
+    // until fixes come back, then the navigator takes up its mode again.
+    setpoint.roll_rad = 0.0;
+    setpoint.pitch_rad = 0.0;
+    setpoint.heading_rad = state.attitude.heading_rad;
+  }
   ApplyAvoid(now, setpoint);
   return setpoint;
 }
@@ -395,6 +450,13 @@ ActuatorOutputs Vehicle::Step(Nanos now, const SensorInputs& inputs) {
   estimator_.Update(now, inputs);
   if (!navigator_ && estimator_.frame())
     navigator_.emplace(navigation_config_, *estimator_.frame());
+  if (resume_ && !ResumeFlight(now)) {
+    // Rebooted in the air, its estimate not ready yet: level, holding its climb
+    // rate at zero, no turn.
+    outputs_ = ActuatorOutputs{};
+    outputs_.armed = true;
+    return outputs_;
+  }
   if (inputs.frame != nullptr) ProcessFrame(now, *inputs.frame);
   CheckSafety(now);
 
@@ -410,10 +472,16 @@ ActuatorOutputs Vehicle::Step(Nanos now, const SensorInputs& inputs) {
     last_telemetry_ = now;
   }
   outputs_ = ActuatorOutputs{};
-  if (!Airborne() || !navigator_) return outputs_;
+  if (!Airborne() || !navigator_) {
+    SaveFlight();
+    return outputs_;
+  }
 
   const CascadeSetpoint setpoint = Behave(now, nav_dt);
-  if (!Airborne()) return outputs_;  // just landed
+  if (!Airborne()) {  // just landed
+    SaveFlight();
+    return outputs_;
+  }
   const Estimate& state = estimator_.estimate();
   CascadeInput input;
   input.roll_rad = state.attitude.roll_rad;
@@ -422,6 +490,7 @@ ActuatorOutputs Vehicle::Step(Nanos now, const SensorInputs& inputs) {
   input.altitude_m = state.altitude_m;
   outputs_ = cascade_.Step(now, input, setpoint);
   outputs_.armed = true;
+  SaveFlight();
   return outputs_;
 }
 
