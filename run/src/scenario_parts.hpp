@@ -13,6 +13,9 @@ namespace fireswarm::run::internal {
 
 /// Sanity limits: beyond them a value is more likely a unit mistake than a plan.
 inline constexpr double kMaxDurationS = 86'400.0;  // one day of simulated time
+/// A server down longer than this (server_restart's duration_s) is no longer a
+/// restart: every vehicle has long returned for its lost link.
+inline constexpr double kMaxServerDownS = 3'600.0;
 /// The fleet's ranges are the planner's (planner/plan.hpp, docs/limits.md). A
 /// battery swap longer than an hour is more likely minutes typed as seconds.
 inline constexpr double kMaxAltitudeM = planner::kMaxAltitudeM;

@@ -41,8 +41,8 @@ struct RunOptions {
   /// An exception it throws ends the run and leaves RunScenario.
   std::function<void(double t_s, server::Server& server)> on_step;
   /// A restart drill: called after every step (after on_step) on which the
-  /// server's radio is off the air, until it returns true, once; the server is then replaced by one restored from the journal
-  /// its predecessor wrote (through the journal file's record format, as
+  /// server's radio is off the air, until it returns true, once; the server is then replaced by one
+  /// restored from the journal its predecessor wrote (through the journal file's record format, as
   /// `fireswarm serve --journal` after a crash), which flies the rest of the
   /// mission. Empty: no restart.
   std::function<bool(double t_s, const server::Server& server)> restart_server_when;
@@ -70,6 +70,7 @@ struct RunResult {
   std::uint64_t state_hash = 0;
   std::string mission_state;  ///< the server's mission state at the end ("complete", ...)
   int server_restarts = 0;    ///< by server_restart faults and RunOptions::restart_server_when
+  int vehicle_reboots = 0;    ///< vehicle_reboot faults done (the vehicle back up)
 };
 
 /// Plans the search (planner::PlanSearch with the fleet's planner and the
