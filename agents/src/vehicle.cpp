@@ -68,54 +68,6 @@ Vehicle::Vehicle(const VehicleConfig& config)
   ApplyParams();
 }
 
-void Vehicle::Reload(const NonVolatileStore& storage) {
-  for (const auto& [id, value] : storage.params()) params_.Write(id, value);
-  if (storage.missions()) missions_ = *storage.missions();
-  if (storage.endpoint()) endpoint_.Restore(*storage.endpoint());
-  endpoint_saved_at_ = endpoint_.state_changes();
-  const FlightRecord& flight = storage.flight();
-  active_mission_ = flight.active_mission;
-  home_ = flight.home;
-  low_battery_ = flight.low_battery;
-  mode_before_hold_ = flight.mode_before_hold;
-  resume_index_ = flight.waypoint_index;
-  rejoin_at_ = flight.rejoin_at;
-  // Before the first reading: altitudes are above the ground it took off from.
-  if (flight.baro_zero_m) estimator_.RestoreAltitudeZero(*flight.baro_zero_m);
-  if (flight.mode == radio::FlightMode::kIdle || flight.mode == radio::FlightMode::kLanded) {
-    mode_ = flight.mode;  // on the ground: nothing to resume
-  } else {
-    resume_ = flight;
-  }
-}
-
-FlightRecord Vehicle::flight_record() const {
-  FlightRecord flight;
-  flight.mode = mode_;
-  flight.mode_before_hold = mode_before_hold_;
-  flight.active_mission = active_mission_;
-  const bool on_route = mode_ == radio::FlightMode::kSearch && !rejoining_ && navigator_;
-  flight.waypoint_index = on_route ? navigator_->waypoint_index() : resume_index_;
-  flight.rejoin_at = rejoin_at_;
-  flight.home = home_;
-  flight.baro_zero_m = estimator_.altitude_zero_m();
-  flight.low_battery = low_battery_;
-  return flight;
-}
-
-void Vehicle::SaveFlight() {
-  // Until the stored flight is resumed, the store keeps it.
-  if (!config_.storage || resume_) return;
-  FlightRecord flight = flight_record();
-  if (flight != config_.storage->flight()) config_.storage->WriteFlight(flight);
-}
-
-void Vehicle::SaveEndpoint() {
-  if (!config_.storage || endpoint_.state_changes() == endpoint_saved_at_) return;
-  config_.storage->WriteEndpoint(endpoint_.state());
-  endpoint_saved_at_ = endpoint_.state_changes();
-}
-
 bool Vehicle::gps_lost() const {
   const Estimate& state = estimator_.estimate();
   return state.has_position && state.gps_age_s > kGpsLostAfterS;

@@ -276,46 +276,6 @@ radio::CommandResult Vehicle::OnCommand(const radio::Command& command) {
   return CommandResult::kUnsupported;
 }
 
-bool Vehicle::ResumeFlight(Nanos now) {
-  const Estimate& state = estimator_.estimate();
-  if (!navigator_ || !state.has_attitude || !state.has_altitude) return false;
-  const FlightRecord flight = *resume_;
-  resume_.reset();
-  // Reload() restored the mission, home, altitude zero and the waypoint to resume
-  // at; the mode is entered here, now that there is a position to start from.
-  switch (flight.mode) {
-    case FlightMode::kTakeoff: {
-      // On with the climb over home (entering the mode again would take home
-      // and the altitude zero here, in the air).
-      mode_ = FlightMode::kTakeoff;
-      mode_since_ = now;
-      RoutePoint over_home;
-      over_home.position = home_.value_or(estimator_.position());
-      over_home.altitude_m = ClimbOutAltitudeM();
-      StartRoute({over_home}, 0);
-      break;
-    }
-    case FlightMode::kSearch:
-    case FlightMode::kInvestigate:
-      // The search resumes where it was (an investigation's circle was the
-      // server's order of the moment: the server sees the search and may send
-      // it again); back to the point it left the route first, if it had.
-      EnterMode(missions_.IsComplete(active_mission_) ? FlightMode::kSearch : FlightMode::kHold,
-                now);
-      break;
-    case FlightMode::kHold:
-    case FlightMode::kReturnToLaunch:
-    case FlightMode::kLand:
-      EnterMode(flight.mode, now);
-      break;
-    case FlightMode::kIdle:
-    case FlightMode::kLanded:
-      mode_ = flight.mode;
-      break;
-  }
-  return true;
-}
-
 void Vehicle::CheckSafety(Nanos now) {
   const Estimate& state = estimator_.estimate();
   if (!Airborne() && low_battery_ && state.battery_fraction >= kFreshPackFraction) {
