@@ -80,7 +80,7 @@ class Vehicle final : public radio::VehicleRequestHandler {
   /// reboot): parameters, missions, radio counters and unacknowledged reports at
   /// once; its flight (mode, mission, waypoint, home, altitude zero) at its first
   /// step with a position, an attitude and an altitude: until then, in the air,
-  /// it holds level at its altitude. Throws std::invalid_argument for a bad
+  /// it flies level at zero climb rate. Throws std::invalid_argument for a bad
   /// configuration, std::runtime_error naming the file when it is corrupt.
   explicit Vehicle(const VehicleConfig& config);
 
