@@ -193,6 +193,10 @@ void PrintSummary(const run::RunResult& result) {
   if (result.server_restarts > 0) {
     std::cout << "  server restarted from its journal " << result.server_restarts << " times\n";
   }
+  if (result.vehicle_reboots > 0) {
+    std::cout << "  vehicles rebooted from their non-volatile storage " << result.vehicle_reboots
+              << " times\n";
+  }
   int planned = 0;
   int flown = 0;
   int swaps = 0;

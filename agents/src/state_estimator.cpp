@@ -20,7 +20,11 @@ void StateEstimator::Update(Nanos now, const SensorInputs& inputs) {
   last_update_ = now;
 
   // Carry the position forward with the velocity, then pull it toward a new fix.
-  if (estimate_.has_position && dt_s > 0.0) {
+  // The velocity is the last fix's: without fixes it goes stale, and the vehicle
+  // (which levels off when its GPS is lost) soon stops moving that way.
+  const bool velocity_known =
+      last_fix_ && common::ToSeconds(now - *last_fix_) <= kMaxDeadReckoningS;
+  if (estimate_.has_position && dt_s > 0.0 && velocity_known) {
     estimate_.position_local.east_m += estimate_.velocity_east_mps * dt_s;
     estimate_.position_local.north_m += estimate_.velocity_north_mps * dt_s;
   }
@@ -28,7 +32,9 @@ void StateEstimator::Update(Nanos now, const SensorInputs& inputs) {
     const GpsInput& gps = *inputs.gps;
     if (!frame_) frame_.emplace(common::LatLon{gps.lat_deg, gps.lon_deg});
     const common::EastNorth fix = frame_->ToLocal({gps.lat_deg, gps.lon_deg});
-    if (!estimate_.has_position) {
+    // The first fix, or the first after a loss: the estimate carried on without
+    // fixes is worth less than the fix itself.
+    if (!estimate_.has_position || !velocity_known) {
       estimate_.position_local = fix;
     } else {
       estimate_.position_local.east_m += kGpsBlend * (fix.east_m - estimate_.position_local.east_m);
@@ -75,6 +81,12 @@ common::LatLon StateEstimator::position() const {
   if (!estimate_.has_position) return {};
   if (!position_) position_ = frame_->ToGeodetic(estimate_.position_local);
   return *position_;
+}
+
+void StateEstimator::RestoreAltitudeZero(double baro_zero_m) {
+  baro_zero_m_ = baro_zero_m;
+  baro_zeroed_ = true;
+  if (baro_raw_m_) estimate_.altitude_m = *baro_raw_m_ - baro_zero_m_;
 }
 
 void StateEstimator::ZeroAltitude() {

@@ -64,7 +64,13 @@ Vehicle::Vehicle(const VehicleConfig& config)
       params_(MakeParamStore(config)),
       endpoint_(EndpointConfig(config), *this),
       detector_(config.detector.value_or(FireDetectorConfigFor(config.camera))) {
+  if (config_.storage) Reload(*config_.storage);
   ApplyParams();
+}
+
+bool Vehicle::gps_lost() const {
+  const Estimate& state = estimator_.estimate();
+  return state.has_position && state.gps_age_s > kGpsLostAfterS;
 }
 
 void Vehicle::ApplyParams() {
@@ -108,11 +114,21 @@ std::vector<radio::Burst> Vehicle::OnRadio(Nanos now, std::span<const std::uint8
     last_heard_ = now;
     link_lost_ = false;
   }
+  // Before the replies go out: what they carry (sequence numbers, reports) and
+  // what the requests changed is stored by then.
+  SaveEndpoint();
+  SaveFlight();
   return replies;
 }
 
 radio::MissionAckStatus Vehicle::OnMissionChunk(const radio::MissionChunk& chunk) {
-  return missions_.OnChunk(chunk);
+  const radio::MissionAckStatus status = missions_.OnChunk(chunk);
+  // Each chunk is stored before it is acknowledged: a reboot mid-upload keeps
+  // the chunks the server will not send again.
+  if (config_.storage && status != radio::MissionAckStatus::kRejected) {
+    config_.storage->WriteMissions(missions_);
+  }
+  return status;
 }
 
 radio::ParamValue Vehicle::OnParamRead(const radio::ParamRead& read) {
@@ -121,14 +137,18 @@ radio::ParamValue Vehicle::OnParamRead(const radio::ParamRead& read) {
 
 radio::ParamValue Vehicle::OnParamWrite(const radio::ParamWrite& write) {
   radio::ParamValue value = params_.Write(write.param_id, write.value);
-  if (value.status == radio::ParamStatus::kOk) ApplyParams();
+  if (value.status == radio::ParamStatus::kOk) {
+    ApplyParams();
+    if (config_.storage) config_.storage->WriteParam(write.param_id, value.value);
+  }
   return value;
 }
 
 void Vehicle::ProcessFrame(Nanos now, const CameraFrame& frame) {
   const Estimate& state = estimator_.estimate();
-  // Frames from the ground or without a position and attitude locate nothing.
-  if (!Airborne() || !state.has_position || !state.has_attitude ||
+  // Frames from the ground or without a position and attitude locate nothing;
+  // nor do frames while the GPS is lost (the position is only a guess then).
+  if (!Airborne() || !state.has_position || !state.has_attitude || gps_lost() ||
       state.altitude_m < kMinDetectionAltitudeM) {
     return;
   }
@@ -162,6 +182,7 @@ void Vehicle::ProcessFrame(Nanos now, const CameraFrame& frame) {
     endpoint_.QueueFireReport(report);
     ++stats_.fires_detected;
   }
+  SaveEndpoint();  // a queued report survives a reboot until it is acknowledged
 }
 
 void Vehicle::UpdateTelemetry(Nanos now) {
@@ -187,7 +208,7 @@ void Vehicle::UpdateTelemetry(Nanos now) {
   if (missions_.complete() != nullptr) flags |= radio::telemetry_flags::kMissionValid;
   if (low_battery_) flags |= radio::telemetry_flags::kLowBattery;
   if (link_lost_) flags |= radio::telemetry_flags::kLinkLost;
-  if (state.has_position) flags |= radio::telemetry_flags::kGpsFix;
+  if (state.has_position && !gps_lost()) flags |= radio::telemetry_flags::kGpsFix;
   telemetry.flags = flags;
   telemetry.mission_id = active_mission_;
   // The mission's waypoint, also while the navigator flies a hold, a circle or

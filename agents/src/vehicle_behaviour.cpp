@@ -282,6 +282,12 @@ void Vehicle::CheckSafety(Nanos now) {
     low_battery_ = false;
   }
   if (!Airborne() || mode_ == FlightMode::kLand) return;
+  // No GPS for long: come down where it is rather than drift until the pack is empty.
+  if (state.has_position && state.gps_age_s > kGpsLostLandAfterS) {
+    ++stats_.gps_lost_landings;
+    EnterMode(FlightMode::kLand, now);
+    return;
+  }
   if (state.battery_fraction < Param(ParamId::kRtlBatteryFraction) && !low_battery_) {
     low_battery_ = true;
     if (mode_ != FlightMode::kReturnToLaunch) {
@@ -302,7 +308,9 @@ void Vehicle::CheckSafety(Nanos now) {
 
 CascadeSetpoint Vehicle::Behave(Nanos now, std::optional<common::Micros> nav_dt) {
   const Estimate& state = estimator_.estimate();
-  if (nav_dt) {
+  const bool no_fix = gps_lost();
+  // Without GPS the navigator would steer by a guess: it waits for fixes.
+  if (nav_dt && !no_fix) {
     const NavigationInput input = NavInput();
     const bool circling = mode_ == FlightMode::kInvestigate && !investigate_approach_;
     navigation_setpoint_ =
@@ -374,6 +382,13 @@ CascadeSetpoint Vehicle::Behave(Nanos now, std::optional<common::Micros> nav_dt)
     case FlightMode::kLanded:
       break;
   }
+  if (no_fix) {
+    // Level, on its heading, at the altitude it flies to: it drifts with the wind
+    // until fixes come back, then the navigator takes up its mode again.
+    setpoint.roll_rad = 0.0;
+    setpoint.pitch_rad = 0.0;
+    setpoint.heading_rad = state.attitude.heading_rad;
+  }
   ApplyAvoid(now, setpoint);
   return setpoint;
 }
@@ -395,6 +410,13 @@ ActuatorOutputs Vehicle::Step(Nanos now, const SensorInputs& inputs) {
   estimator_.Update(now, inputs);
   if (!navigator_ && estimator_.frame())
     navigator_.emplace(navigation_config_, *estimator_.frame());
+  if (resume_ && !ResumeFlight(now)) {
+    // Rebooted in the air, its estimate not ready yet: level, holding its climb
+    // rate at zero, no turn.
+    outputs_ = ActuatorOutputs{};
+    outputs_.armed = true;
+    return outputs_;
+  }
   if (inputs.frame != nullptr) ProcessFrame(now, *inputs.frame);
   CheckSafety(now);
 
@@ -410,10 +432,16 @@ ActuatorOutputs Vehicle::Step(Nanos now, const SensorInputs& inputs) {
     last_telemetry_ = now;
   }
   outputs_ = ActuatorOutputs{};
-  if (!Airborne() || !navigator_) return outputs_;
+  if (!Airborne() || !navigator_) {
+    SaveFlight();
+    return outputs_;
+  }
 
   const CascadeSetpoint setpoint = Behave(now, nav_dt);
-  if (!Airborne()) return outputs_;  // just landed
+  if (!Airborne()) {  // just landed
+    SaveFlight();
+    return outputs_;
+  }
   const Estimate& state = estimator_.estimate();
   CascadeInput input;
   input.roll_rad = state.attitude.roll_rad;
@@ -422,6 +450,7 @@ ActuatorOutputs Vehicle::Step(Nanos now, const SensorInputs& inputs) {
   input.altitude_m = state.altitude_m;
   outputs_ = cascade_.Step(now, input, setpoint);
   outputs_.armed = true;
+  SaveFlight();
   return outputs_;
 }
 

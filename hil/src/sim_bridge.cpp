@@ -63,6 +63,10 @@ void LockstepFleet::Add(agents::Vehicle& vehicle) {
   vehicles_.push_back(&vehicle);
 }
 
+void LockstepFleet::Remove(int id) {
+  std::erase_if(vehicles_, [id](const agents::Vehicle* v) { return v->id() == id; });
+}
+
 void LockstepFleet::Step() {
   simulation_.Step();
   const common::Nanos time = now();

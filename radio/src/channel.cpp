@@ -64,6 +64,12 @@ void ChannelConfig::Validate() const {
   if (!(range.max_range_m >= range.clean_range_m)) {
     ThrowInvalid("range.max_range_m", ">= range.clean_range_m", range.max_range_m);
   }
+  for (const LossBurst& burst : loss_bursts) {
+    RequireProbability("loss_bursts.loss", burst.loss);
+    if (burst.until < burst.from) {
+      ThrowInvalid("loss_bursts.until", ">= from", burst.until.count());
+    }
+  }
 }
 
 SharedChannel::SharedChannel(const ChannelConfig& config, std::uint64_t seed)
@@ -197,7 +203,12 @@ void SharedChannel::Deliver(const Transmission& transmission, RadioId receiver) 
 
   Radio& to = radios_[receiver];
   const double range_factor = RangeFactor(radios_[transmission.transmitter], to);
-  const double loss = config_.loss + (1.0 - config_.loss) * range_factor;
+  double loss = config_.loss + (1.0 - config_.loss) * range_factor;
+  // Outside a burst the loss is left exactly as it was (no rounding through the
+  // combination), so a scenario without bursts draws as before.
+  if (const double burst = BurstLossAt(transmission.end); burst > 0.0) {
+    loss = 1.0 - (1.0 - loss) * (1.0 - burst);
+  }
   // No draw when the outcome is certain, so a lossless channel uses no randomness.
   if (loss >= 1.0 || (loss > 0.0 && UniformUnit(rng_) < loss)) {
     ++stats_.receptions_lost;
@@ -225,6 +236,14 @@ void SharedChannel::Deliver(const Transmission& transmission, RadioId receiver) 
     ++stats_.bits_flipped;
     if (++bit >= total_bits) break;
   }
+}
+
+double SharedChannel::BurstLossAt(Nanos t) const {
+  double loss = 0.0;
+  for (const LossBurst& burst : config_.loss_bursts) {
+    if (burst.from <= t && t < burst.until) loss = std::max(loss, burst.loss);
+  }
+  return loss;
 }
 
 double SharedChannel::RangeFactor(const Radio& from, const Radio& to) const {

@@ -1,6 +1,7 @@
 #include "fireswarm/radio/simulation_keys.hpp"
 
 #include <random>
+#include <utility>
 
 namespace fireswarm::radio {
 
@@ -23,9 +24,11 @@ std::shared_ptr<FrameSecurity> SimulationServerSecurity(std::uint64_t seed,
   return security;
 }
 
-std::shared_ptr<FrameSecurity> SimulationVehicleSecurity(std::uint64_t seed, std::uint8_t id) {
-  auto security = std::make_shared<FrameSecurity>(VehicleSecurityConfig(id), SecurityState{},
-                                                  PersistSecurityState{});
+std::shared_ptr<FrameSecurity> SimulationVehicleSecurity(std::uint64_t seed, std::uint8_t id,
+                                                         SecurityState restored,
+                                                         PersistSecurityState persist) {
+  auto security = std::make_shared<FrameSecurity>(VehicleSecurityConfig(id), std::move(restored),
+                                                  std::move(persist));
   security->SetKey(id, SimulationKey(seed, id));
   security->SetKey(kBroadcastKeyId, SimulationKey(seed, kBroadcastKeyId));
   return security;

@@ -59,7 +59,26 @@ std::uint16_t VehicleEndpoint::QueueFireReport(const FireReport& report) {
   reports_.push_back(report);
   reports_.back().report_id = next_report_id_;
   ++stats_.reports_queued;
+  ++state_changes_;
   return next_report_id_++;
+}
+
+VehicleEndpointState VehicleEndpoint::state() const {
+  return VehicleEndpointState{next_report_id_, next_sequence_,
+                              std::vector<FireReport>(reports_.begin(), reports_.end()),
+                              last_request_};
+}
+
+void VehicleEndpoint::Restore(const VehicleEndpointState& state) {
+  next_report_id_ = state.next_report_id;
+  next_sequence_ = state.next_sequence;
+  reports_.assign(state.reports.begin(), state.reports.end());
+  while (reports_.size() > config_.max_queued_reports) {
+    reports_.pop_front();
+    ++stats_.reports_dropped;
+  }
+  last_request_ = state.last_request;
+  ++state_changes_;
 }
 
 std::vector<Burst> VehicleEndpoint::OnReceive(Nanos now, std::span<const std::uint8_t> bytes) {
@@ -128,6 +147,7 @@ void VehicleEndpoint::Handle(const Received& frame, Nanos now, std::vector<Burst
     if (acked != reports_.end()) {
       reports_.erase(acked);
       ++stats_.reports_acked;
+      ++state_changes_;
     }
     return;
   }
@@ -163,6 +183,7 @@ void VehicleEndpoint::HandleRequest(const Message& request) {
   }
   last_request_ = HandledRequest{id, sequence, AckFor(request)};
   ++stats_.requests_handled;
+  ++state_changes_;
 }
 
 Message VehicleEndpoint::AckFor(const Message& request) {
@@ -242,6 +263,7 @@ void VehicleEndpoint::Send(Message reply, Nanos start, std::size_t max_bytes, Na
   }
   ++next_sequence_;
   ++stats_.replies_sent;
+  ++state_changes_;
   if (back_to_back) {
     // Two turns at the same instant (a request and a Poll in one burst): one burst.
     out.back().bytes.insert(out.back().bytes.end(), frame.begin(), frame.end());

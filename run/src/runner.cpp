@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "fireswarm/agents/non_volatile_store.hpp"
 #include "fireswarm/agents/params.hpp"
 #include "fireswarm/agents/vehicle.hpp"
 #include "fireswarm/common/secret_key.hpp"
@@ -51,15 +52,6 @@ struct SilentWindow {
 bool SilentAt(const std::vector<SilentWindow>& silent, double t_s) {
   return std::ranges::any_of(
       silent, [&](const SilentWindow& w) { return w.from_s <= t_s && t_s < w.until_s; });
-}
-
-// A vehicle on the radio; a silent one is cut off both ways (it hears nothing and
-// says nothing). The vehicle must outlive the step.
-radio::RadioStep RadioSideOf(agents::Vehicle& vehicle, std::vector<SilentWindow> silent) {
-  return [&vehicle, silent = std::move(silent)](Nanos now, std::span<const std::uint8_t> received) {
-    if (SilentAt(silent, common::ToSeconds(now))) return std::vector<radio::Burst>{};
-    return vehicle.OnRadio(now, received);
-  };
 }
 
 // The runner's own operator: it signs the mission's start with a key made for
@@ -116,6 +108,12 @@ radio::ChannelConfig MakeChannelConfig(const Scenario& scenario, std::size_t cha
   config.bits_per_byte = timing.bits_per_byte;
   config.turnaround = timing.turnaround;
   config.loss = scenario.radio.ChannelAt(static_cast<int>(channel)).loss;
+  // radio_burst faults: interference on every channel for their window.
+  for (const FaultSpec& fault : scenario.faults) {
+    if (fault.kind != FaultKind::kRadioBurst) continue;
+    config.loss_bursts.push_back({common::FromSeconds(fault.at_s),
+                                  common::FromSeconds(fault.at_s + fault.duration_s), fault.loss});
+  }
   return config;
 }
 
@@ -123,7 +121,8 @@ std::vector<SilentWindow> SilentWindowsOf(const Scenario& scenario, int id) {
   std::vector<SilentWindow> out;
   for (const FaultSpec& fault : scenario.faults) {
     if (fault.vehicle != id) continue;
-    if (fault.kind == FaultKind::kRadioSilent)
+    // A rebooting vehicle's radio is down with its software.
+    if (fault.kind == FaultKind::kRadioSilent || fault.kind == FaultKind::kVehicleReboot)
       out.push_back({fault.at_s, fault.at_s + fault.duration_s});
     if (fault.kind == FaultKind::kTotalLoss) {
       out.push_back({fault.at_s, std::numeric_limits<double>::infinity()});
@@ -178,7 +177,8 @@ class Lockstep {
         fleet_(simulation_),
         server_config_(MakeServerConfig(scenario, options, runner_key_)),
         frame_(scenario.area.frame),
-        server_(std::make_unique<server::Server>(server_config_, frame_)) {
+        server_(std::make_unique<server::Server>(server_config_, frame_)),
+        seed_(scenario.seed) {
     const std::vector<radio::SchedulerConfig> channels = server_config_.ChannelConfigs();
     for (std::size_t k = 0; k < channels.size(); ++k) {
       // Through server_, which a restart replaces. Separate frequencies: each
@@ -186,10 +186,13 @@ class Lockstep {
       radios_.push_back(std::make_unique<radio::ChannelLoop>(
           MakeChannelConfig(scenario, k, channels[k].timing),
           (scenario.seed ^ kChannelSeedSalt) + k,
-          radio::LoopMaster{[this, k] { return server_->NextWakeup(k); },
-                            [this, k](Nanos now, std::span<const std::uint8_t> received) {
-                              return server_->Step(now, k, received);
-                            }}));
+          radio::LoopMaster{
+              [this, k] { return server_down_ ? Nanos::max() : server_->NextWakeup(k); },
+              [this, k](Nanos now, std::span<const std::uint8_t> received) {
+                // A dead server's modem hears nothing and says nothing.
+                if (server_down_) return std::vector<radio::Burst>{};
+                return server_->Step(now, k, received);
+              }}));
       loops_.push_back(radios_.back().get());
     }
     for (const int id : scenario.fleet.ReceiverIds()) {
@@ -198,13 +201,14 @@ class Lockstep {
       config.radio.id = config.id;
       config.radio.mode = server_config_.radio.mode;
       config.radio.checksum = server_config_.radio.checksum;
-      if (config.radio.checksum == radio::ChecksumMode::kSecure) {
-        config.radio.security = radio::SimulationVehicleSecurity(scenario.seed, config.id);
-      }
+      // Its flash: what a reboot keeps (vehicle_reboot faults).
+      config.storage = std::make_shared<agents::NonVolatileStore>();
       server_->AddVehicle(id);
       const std::size_t channel = server_->scheduler().ChannelOf(config.id);
       config.radio.timing = channels[channel].timing;
       config.camera = *scenario.fleet.camera;
+      vehicle_configs_.push_back(config);
+      config.radio.security = SecurityOf(config);
       auto vehicle = std::make_unique<agents::Vehicle>(config);
       // The mount pitch is a parameter (the seed's EEPROM), set before the flight.
       radio::ParamWrite pitch;
@@ -212,8 +216,10 @@ class Lockstep {
       pitch.value = static_cast<float>(scenario.fleet.camera_pitch_deg);
       vehicle->OnParamWrite(pitch);
       fleet_.Add(*vehicle);
-      radios_[channel]->AddVehicle(RadioSideOf(*vehicle, SilentWindowsOf(scenario, id)));
+      radios_[channel]->AddVehicle(RadioSideOf(vehicles_.size(), SilentWindowsOf(scenario, id)));
       vehicles_.push_back(std::move(vehicle));
+      down_.push_back(false);
+      reports_queued_before_.push_back(0);
     }
     server_->LoadMission(planned.missions, 0.0, planned.airspace);
     Start(0.0);
@@ -270,6 +276,38 @@ class Lockstep {
   const server::Server& server() const { return *server_; }
   server::Server& server() { return *server_; }
 
+  /// Vehicle `k` (in fleet order) goes down for a reboot: no more steps (the
+  /// simulator holds its last commands) and no radio until RebootVehicle().
+  void ShutDownVehicle(std::size_t k) {
+    fleet_.Remove(vehicles_[k]->id());
+    down_[k] = true;
+  }
+  bool VehicleDown(std::size_t k) const { return down_[k]; }
+  /// Vehicle `k` comes back: a new Vehicle, made from its configuration and its
+  /// non-volatile storage, takes the old one's place on the radio and in the fleet.
+  void RebootVehicle(std::size_t k) {
+    reports_queued_before_[k] += vehicles_[k]->endpoint().stats().reports_queued;
+    agents::VehicleConfig config = vehicle_configs_[k];
+    config.radio.security = SecurityOf(config);
+    vehicles_[k] = std::make_unique<agents::Vehicle>(config);
+    fleet_.Add(*vehicles_[k]);
+    down_[k] = false;
+  }
+  /// The index of vehicle `id` in fleet order.
+  std::size_t IndexOf(int id) const {
+    const auto found =
+        std::ranges::find_if(vehicles_, [id](const auto& v) { return v->id() == id; });
+    return static_cast<std::size_t>(found - vehicles_.begin());
+  }
+
+  /// The server dies (a restart with down time): its radio goes silent and it
+  /// processes nothing until RestartServer().
+  void StopServer() {
+    KeepJournal();
+    server_down_ = true;
+  }
+  bool server_down() const { return server_down_; }
+
   /// Keeps what the server journaled since the last call (for a restart).
   void KeepJournal() {
     for (server::JournalEntry& entry : server_->TakeJournalEntries()) {
@@ -291,6 +329,7 @@ class Lockstep {
     }
     server_ =
         std::make_unique<server::Server>(server::Server::Restore(server_config_, frame_, entries));
+    server_down_ = false;
   }
   /// Whether the server's radio is off the air on every channel: a server can
   /// only be replaced between its transmissions (a dying server's modem still
@@ -307,6 +346,15 @@ class Lockstep {
     return busiest;
   }
   const std::vector<std::unique_ptr<agents::Vehicle>>& vehicles() const { return vehicles_; }
+
+  /// Fire reports the vehicles queued, over every reboot.
+  std::uint64_t ReportsQueued() const {
+    std::uint64_t queued = 0;
+    for (std::size_t k = 0; k < vehicles_.size(); ++k) {
+      queued += reports_queued_before_[k] + vehicles_[k]->endpoint().stats().reports_queued;
+    }
+    return queued;
+  }
 
   std::size_t PendingReports() const {
     std::size_t pending = 0;
@@ -326,8 +374,8 @@ class Lockstep {
       if (phase == sim2d::FlightPhase::kLost) state = "lost";
       if (phase == sim2d::FlightPhase::kCrashed) state = "crashed";
       out.modes[v->id()] = state;
-      out.reports_queued += v->endpoint().stats().reports_queued;
     }
+    out.reports_queued = ReportsQueued();
     // A patrol plans its sorties once and flies them every round.
     out.sorties_planned = sorties_planned_;
     for (auto& [id, sorties] : out.sorties_planned) sorties *= missions_started_;
@@ -356,6 +404,26 @@ class Lockstep {
   }
 
  private:
+  // A vehicle on the radio; a silent or rebooting one is cut off both ways (it
+  // hears nothing and says nothing). Through vehicles_[k], which a reboot replaces.
+  radio::RadioStep RadioSideOf(std::size_t k, std::vector<SilentWindow> silent) {
+    return
+        [this, k, silent = std::move(silent)](Nanos now, std::span<const std::uint8_t> received) {
+          if (down_[k] || SilentAt(silent, common::ToSeconds(now)))
+            return std::vector<radio::Burst>{};
+          return vehicles_[k]->OnRadio(now, received);
+        };
+  }
+  // Secure mode: the vehicle's frame security, restored from and persisted to its
+  // storage (a reboot neither reuses a nonce nor takes a replayed frame).
+  std::shared_ptr<radio::FrameSecurity> SecurityOf(const agents::VehicleConfig& config) const {
+    if (config.radio.checksum != radio::ChecksumMode::kSecure) return nullptr;
+    const std::shared_ptr<agents::NonVolatileStore> storage = config.storage;
+    return radio::SimulationVehicleSecurity(
+        seed_, config.id, storage->security(),
+        [storage](const radio::SecurityState& state) { return storage->WriteSecurity(state); });
+  }
+
   common::SecretKey runner_key_;  // signs the start; first: the server's config holds it
   sim2d::Simulation simulation_;
   std::map<int, int> sorties_planned_;
@@ -370,6 +438,11 @@ class Lockstep {
   std::vector<std::unique_ptr<agents::Vehicle>> vehicles_;
   int missions_started_ = 0;
   std::map<int, int> sorties_flown_before_;  // a patrol's earlier rounds, by receiver ID
+  std::vector<agents::VehicleConfig> vehicle_configs_;  // a rebooted vehicle's, by fleet order
+  std::vector<bool> down_;                              // rebooting, by fleet order
+  std::vector<std::uint64_t> reports_queued_before_;    // by the vehicle's earlier lives
+  std::uint64_t seed_ = 0;
+  bool server_down_ = false;
 };
 
 // When to end a run before its duration: the mission is complete (or aborted) and
@@ -405,6 +478,40 @@ class StopRule {
   std::optional<double> complete_at_s_;
   std::optional<double> down_at_s_;
 };
+
+// One vehicle_reboot fault as the run goes: down from at_s, back at until_s.
+struct Reboot {
+  std::size_t vehicle = 0;  // index in fleet order
+  double at_s = 0.0;
+  double until_s = 0.0;
+  bool down = false;
+  bool done = false;
+};
+
+// Shuts down and brings back the vehicles whose reboot is due at `t_s` (a vehicle
+// already down for another reboot stays down until the later one ends). Returns
+// the reboots finished.
+int StepReboots(double t_s, std::vector<Reboot>& reboots, Lockstep& run) {
+  constexpr double kEps = 1e-9;
+  int finished = 0;
+  for (Reboot& reboot : reboots) {
+    if (reboot.done) continue;
+    if (!reboot.down && t_s + kEps >= reboot.at_s) {
+      if (!run.VehicleDown(reboot.vehicle)) run.ShutDownVehicle(reboot.vehicle);
+      reboot.down = true;
+    }
+    if (reboot.down && t_s + kEps >= reboot.until_s) {
+      const bool overlapped = std::ranges::any_of(reboots, [&](const Reboot& other) {
+        return &other != &reboot && other.vehicle == reboot.vehicle && other.down && !other.done &&
+               other.until_s > reboot.until_s;
+      });
+      if (!overlapped) run.RebootVehicle(reboot.vehicle);
+      reboot.done = true;
+      ++finished;
+    }
+  }
+  return finished;
+}
 
 }  // namespace
 
@@ -445,27 +552,44 @@ RunResult RunScenario(const Scenario& scenario, const RunOptions& options) {
   };
   constexpr double kEps = 1e-9;
   // The scenario's server restarts (faults of kind server_restart), in time order.
-  std::vector<double> restarts_at_s;
+  std::vector<const FaultSpec*> restarts;
+  std::vector<Reboot> reboots;
   for (const FaultSpec& fault : scenario.faults) {
-    if (fault.kind == FaultKind::kServerRestart) restarts_at_s.push_back(fault.at_s);
+    if (fault.kind == FaultKind::kServerRestart) restarts.push_back(&fault);
+    if (fault.kind == FaultKind::kVehicleReboot) {
+      reboots.push_back({run.IndexOf(fault.vehicle), fault.at_s, fault.at_s + fault.duration_s});
+    }
   }
-  std::ranges::sort(restarts_at_s);
+  std::ranges::stable_sort(restarts, {}, &FaultSpec::at_s);
   std::size_t restarts_done = 0;
-  bool drilled = false;  // RunOptions::restart_server_when's one restart
+  std::optional<double> server_back_at_s;  // a restart's down time ends
+  bool drilled = false;                    // RunOptions::restart_server_when's one restart
   double next_patrol_s = scenario.patrol ? scenario.patrol->every_s : 0.0;
   while (run.time_s() < scenario.duration_s - kEps) {
     run.Step();
     const double t_s = run.time_s();
-    // At its time, or just after: once the server's radio is off the air.
-    for (; restarts_done < restarts_at_s.size() && t_s + kEps >= restarts_at_s[restarts_done] &&
-           run.ServerRadioQuiet();
+    // At its time, or just after: once the server's radio is off the air. With a
+    // down time the server dies then and its successor takes over that much later.
+    for (; restarts_done < restarts.size() && t_s + kEps >= restarts[restarts_done]->at_s &&
+           !run.server_down() && run.ServerRadioQuiet();
          ++restarts_done) {
+      if (restarts[restarts_done]->duration_s > 0.0) {
+        run.StopServer();
+        server_back_at_s = t_s + restarts[restarts_done]->duration_s;
+      } else {
+        run.RestartServer();
+        ++result.server_restarts;
+      }
+    }
+    if (server_back_at_s && t_s + kEps >= *server_back_at_s) {
       run.RestartServer();
       ++result.server_restarts;
+      server_back_at_s.reset();
     }
+    result.vehicle_reboots += StepReboots(t_s, reboots, run);
     if (options.on_step) options.on_step(t_s, run.server());
     // The drill too replaces the server only between its transmissions.
-    if (options.restart_server_when && !drilled && run.ServerRadioQuiet()) {
+    if (options.restart_server_when && !drilled && !run.server_down() && run.ServerRadioQuiet()) {
       run.KeepJournal();
       if (options.restart_server_when(t_s, run.server())) {
         run.RestartServer();
@@ -479,10 +603,10 @@ RunResult RunScenario(const Scenario& scenario, const RunOptions& options) {
       next_progress_s += options.progress_interval_s;
     }
     // A patrol flies the search again every_s after the last start, once the
-    // server is over that one and the crews have swapped the packs (as the
+    // server (up) is over that one and the crews have swapped the packs (as the
     // operator would wait); it stops at the duration only.
     if (scenario.patrol) {
-      if (t_s + kEps >= next_patrol_s && run.server().MissionOver() &&
+      if (t_s + kEps >= next_patrol_s && !run.server_down() && run.server().MissionOver() &&
           run.server().FleetReady(t_s)) {
         run.StartNextMission(planned, t_s);
         next_patrol_s = t_s + scenario.patrol->every_s;

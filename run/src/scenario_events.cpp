@@ -12,9 +12,9 @@ using internal::Mapping;
 using internal::Range;
 
 // Indexed by the enums' values (scenario.hpp lists them in this order).
-constexpr std::array<std::string_view, 8> kFaultKindNames{
-    "stream_cut", "frozen",     "bias",         "extra_noise",
-    "ballast",    "total_loss", "radio_silent", "server_restart"};
+constexpr std::array<std::string_view, 11> kFaultKindNames{
+    "stream_cut",   "frozen",         "bias",           "extra_noise", "ballast",    "total_loss",
+    "radio_silent", "server_restart", "vehicle_reboot", "gps_loss",    "radio_burst"};
 constexpr std::array<std::string_view, 4> kFaultSensorNames{"gps", "baro", "attitude", "battery"};
 
 bool IsSensorFault(FaultKind kind) {
@@ -86,6 +86,8 @@ void ReadFaultParameters(const Mapping& fault, FaultSpec& out) {
       only_for("noise_factor", out.kind == FaultKind::kExtraNoise, "extra_noise");
   const std::optional<Field> ballast =
       only_for("ballast_offset_m", out.kind == FaultKind::kBallast, "ballast");
+  const std::optional<Field> loss =
+      only_for("loss", out.kind == FaultKind::kRadioBurst, "radio_burst");
   const auto required = [&fault](const std::optional<Field>& field, std::string_view key) {
     return field ? *field : fault.Required(key);  // Required throws "missing (required)"
   };
@@ -102,17 +104,40 @@ void ReadFaultParameters(const Mapping& fault, FaultSpec& out) {
         ReadVector<2>(required(ballast, "ballast_offset_m"),
                       Range{-internal::kMaxBallastOffsetM, internal::kMaxBallastOffsetM});
   }
+  if (out.kind == FaultKind::kRadioBurst) {
+    out.loss = required(loss, "loss").Number(Range{0.0, 1.0, true});
+  }
+}
+
+// `duration_s`: refused where a fault has none, required for a radio burst, and
+// each kind's own default and range.
+void ReadFaultDuration(const Mapping& fault, FaultSpec& out) {
+  const std::optional<Field> duration = fault.Find("duration_s");
+  if (!duration) {
+    if (out.kind == FaultKind::kRadioBurst) fault.Required("duration_s");  // throws
+    if (out.kind == FaultKind::kServerRestart) out.duration_s = 0.0;       // at once
+    if (out.kind == FaultKind::kVehicleReboot) out.duration_s = kDefaultRebootS;
+    return;
+  }
+  if (out.kind == FaultKind::kTotalLoss) {
+    duration->Fail("total_loss is permanent: it takes no duration_s");
+  }
+  double max_s = internal::kMaxDurationS;
+  if (out.kind == FaultKind::kServerRestart) max_s = internal::kMaxServerDownS;
+  if (out.kind == FaultKind::kVehicleReboot) max_s = kMaxRebootS;
+  out.duration_s = duration->Number(Range{0.0, max_s, true});
 }
 
 FaultSpec ReadFault(const Field& field, const Scenario& scenario) {
   const Mapping fault(field, {"vehicle", "at_s", "kind", "duration_s", "sensor", "bias",
-                              "noise_factor", "ballast_offset_m"});
+                              "noise_factor", "ballast_offset_m", "loss"});
   FaultSpec out;
   out.kind = static_cast<FaultKind>(fault.Required("kind").OneOf(kFaultKindNames));
-  const bool server_fault = out.kind == FaultKind::kServerRestart;
-  if (server_fault) {
+  if (out.kind == FaultKind::kServerRestart || out.kind == FaultKind::kRadioBurst) {
     if (const std::optional<Field> vehicle = fault.Find("vehicle")) {
-      vehicle->Fail("server_restart concerns the server: it takes no vehicle");
+      vehicle->Fail(out.kind == FaultKind::kServerRestart
+                        ? "server_restart concerns the server: it takes no vehicle"
+                        : "radio_burst concerns every radio channel: it takes no vehicle");
     }
   } else {
     const Field vehicle = fault.Required("vehicle");
@@ -124,17 +149,7 @@ FaultSpec ReadFault(const Field& field, const Scenario& scenario) {
     }
   }
   out.at_s = fault.Required("at_s").Number(Range{0.0, scenario.duration_s, false, true});
-  if (const std::optional<Field> duration = fault.Find("duration_s")) {
-    if (out.kind == FaultKind::kTotalLoss) {
-      duration->Fail("total_loss is permanent: it takes no duration_s");
-    }
-    if (server_fault) {
-      duration->Fail(
-          "server_restart is instant (the new server takes over at once): it takes "
-          "no duration_s");
-    }
-    out.duration_s = duration->Number(Range{0.0, internal::kMaxDurationS, true});
-  }
+  ReadFaultDuration(fault, out);
   ReadFaultParameters(fault, out);
   return out;
 }

@@ -15,6 +15,9 @@ namespace fireswarm::run::internal {
 inline constexpr double kMaxDurationS = 86'400.0;  // one day of simulated time
 /// A patrol round more often than once a minute could not even take off.
 inline constexpr double kMinPatrolEveryS = 60.0;
+/// A server down longer than this (server_restart's duration_s) is no longer a
+/// restart: every vehicle has long returned for its lost link.
+inline constexpr double kMaxServerDownS = 3'600.0;
 /// The fleet's ranges are the planner's (planner/plan.hpp, docs/limits.md). A
 /// battery swap longer than an hour is more likely minutes typed as seconds.
 inline constexpr double kMaxAltitudeM = planner::kMaxAltitudeM;

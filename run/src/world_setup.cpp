@@ -64,6 +64,7 @@ sim2d::SensorKind ToSim(FaultSensor sensor) {
 sim2d::FaultKind ToSim(FaultKind kind) {
   switch (kind) {
     case FaultKind::kStreamCut:
+    case FaultKind::kGpsLoss:  // a stream cut of the GPS (ToSim(FaultSpec) sets the sensor)
       return sim2d::FaultKind::kStreamCut;
     case FaultKind::kFrozen:
       return sim2d::FaultKind::kFrozen;
@@ -76,15 +77,24 @@ sim2d::FaultKind ToSim(FaultKind kind) {
     case FaultKind::kTotalLoss:
     case FaultKind::kRadioSilent:
     case FaultKind::kServerRestart:  // the runner's, like kRadioSilent: never passed on
+    case FaultKind::kVehicleReboot:
+    case FaultKind::kRadioBurst:
       return sim2d::FaultKind::kTotalLoss;
   }
   return sim2d::FaultKind::kStreamCut;
 }
 
+// The faults sim2d applies; the runner applies the others (the radio's, the
+// server's, a vehicle's software reboot).
+bool IsSimulatorFault(FaultKind kind) {
+  return kind != FaultKind::kRadioSilent && kind != FaultKind::kServerRestart &&
+         kind != FaultKind::kVehicleReboot && kind != FaultKind::kRadioBurst;
+}
+
 sim2d::FaultSpec ToSim(const FaultSpec& fault) {
   sim2d::FaultSpec out;
   out.kind = ToSim(fault.kind);
-  out.sensor = ToSim(fault.sensor);
+  out.sensor = ToSim(fault.kind == FaultKind::kGpsLoss ? FaultSensor::kGps : fault.sensor);
   out.start_s = fault.at_s;
   out.end_s = fault.at_s + fault.duration_s;
   out.bias = Eigen::Vector3d(fault.bias[0], fault.bias[1], fault.bias[2]);
@@ -278,8 +288,7 @@ sim2d::SimulationConfig MakeSimulationConfig(const Scenario& scenario,
         std::max(battery.capacity_wh, cruise_w * scenario.fleet.endurance_s / kSecondsPerHour /
                                           (1.0 - kBatteryLeftAfterSortie));
     for (const FaultSpec& fault : scenario.faults) {
-      if (fault.vehicle == id && fault.kind != FaultKind::kRadioSilent &&
-          fault.kind != FaultKind::kServerRestart) {
+      if (fault.vehicle == id && IsSimulatorFault(fault.kind)) {
         vehicle.faults.push_back(ToSim(fault));
       }
     }

@@ -86,10 +86,24 @@ TEST(StateEstimator, DeadReckonsWithTheGpsVelocityBetweenFixes) {
   EXPECT_NEAR(later.east_m, 2.0, 1e-3);
   EXPECT_NEAR(later.north_m, -1.0, 1e-3);
 
+  // Beyond kMaxDeadReckoningS (1 s) the last fix's velocity is stale: the
+  // position is held (a vehicle without GPS levels off and slows down).
   estimator.Update(Nanos{milliseconds{1'500}}, {});
-  EXPECT_NEAR(estimator.estimate().position_local.east_m, 3.0, kEstimateTolerance);
-  EXPECT_NEAR(estimator.estimate().position_local.north_m, -1.5, kEstimateTolerance);
+  EXPECT_NEAR(estimator.estimate().position_local.east_m, 2.0, kEstimateTolerance);
+  EXPECT_NEAR(estimator.estimate().position_local.north_m, -1.0, kEstimateTolerance);
   EXPECT_NEAR(estimator.estimate().gps_age_s, 1.5, kEstimateTolerance);
+}
+
+// The first fix after a GPS loss is taken as it is: the estimate carried on
+// without fixes is worth less than the fix (blending would drag the old guess
+// along for seconds).
+TEST(StateEstimator, TheFirstFixAfterALossIsTakenAsItIs) {
+  StateEstimator estimator;
+  estimator.Update(Nanos{0}, Fix(kLaunch));
+  const LatLon thirty_metres_north = LocalFrame(kLaunch).ToGeodetic({0.0, 30.0});
+  estimator.Update(Nanos{milliseconds{5'000}}, Fix(thirty_metres_north));
+  EXPECT_NEAR(estimator.estimate().position_local.north_m, 30.0, 1e-6);
+  EXPECT_NEAR(estimator.estimate().gps_age_s, 0.0, kEstimateTolerance);
 }
 
 TEST(StateEstimator, BlendsPartWayTowardANewFix) {

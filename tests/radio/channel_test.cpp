@@ -10,6 +10,7 @@
 #include <numeric>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "radio/sim_net.hpp"
@@ -221,6 +222,50 @@ TEST(SharedChannel, LossFractionMatchesConfiguredLoss) {
   const double lost = kTransmissions - received;
   EXPECT_NEAR(lost, kTransmissions * 0.1, FiveSigma(kTransmissions, 0.1));
   EXPECT_EQ(static_cast<double>(channel.stats().receptions_lost), lost);
+}
+
+// A radio_burst: within its window every reception is lost with its probability
+// (1: all), on top of the channel's own loss; outside it nothing changes.
+TEST(SharedChannel, LossBurstLosesReceptionsInItsWindowOnly) {
+  constexpr std::size_t kBurstBytes = 4;
+  constexpr int kTransmissions = 2'000;
+  const auto run = [&](double burst_loss) {
+    ChannelConfig config = TestChannelConfig();
+    config.loss = 0.1;
+    SharedChannel channel(config, 42);
+    const RadioId sender = channel.AddRadio();
+    const RadioId receiver = channel.AddRadio();
+    // Each send-and-resolve takes the turnaround and the airtime: the window
+    // covers the second thousand transmissions.
+    const Nanos each = kTurnaround + channel.AirtimeOf(kBurstBytes);
+    ChannelConfig with_burst = config;
+    with_burst.loss_bursts.push_back({each * 1001, each * 2000, burst_loss});
+    SharedChannel bursty(with_burst, 42);
+    bursty.AddRadio();
+    bursty.AddRadio();
+    // Per channel (without, with the burst): losses before and in the window.
+    std::vector<int> lost_in_window(2, 0);
+    std::vector<int> lost_before(2, 0);
+    const std::vector<SharedChannel*> channels{&channel, &bursty};
+    for (std::size_t c = 0; c < 2; ++c) {
+      for (int i = 0; i < kTransmissions; ++i) {
+        SendAndResolve(*channels[c], sender, Pattern(kBurstBytes));
+        const bool received = Drained(*channels[c], receiver).size() == kBurstBytes;
+        if (received) continue;
+        if (i < 1000) ++lost_before[c];
+        if (i >= 1000 && i < 1999) ++lost_in_window[c];
+      }
+    }
+    return std::pair(lost_in_window, lost_before);
+  };
+  const auto [dead_in, dead_before] = run(1.0);
+  EXPECT_EQ(dead_in[1], 999);                 // a dead channel in the window
+  EXPECT_EQ(dead_before[1], dead_before[0]);  // the same draws before it
+  const auto [half_in, half_before] = run(0.5);
+  EXPECT_EQ(half_before[1], half_before[0]);
+  const double p = 1.0 - 0.9 * 0.5;
+  EXPECT_NEAR(half_in[1], 999 * p, FiveSigma(999, p));
+  EXPECT_NEAR(half_in[0], 999 * 0.1, FiveSigma(999, 0.1));
 }
 
 TEST(SharedChannel, BitErrorsMatchConfiguredRate) {
@@ -447,6 +492,11 @@ TEST(ChannelConfig, ValidateNamesTheBadField) {
   ExpectConfigRejected(config, "max_range_m");
   config.range.max_range_m = kNaN;
   ExpectConfigRejected(config, "max_range_m");
+  config = {};
+  config.loss_bursts.push_back({Nanos{10}, Nanos{5}, 0.5});
+  ExpectConfigRejected(config, "loss_bursts.until");
+  config.loss_bursts.back() = {Nanos{0}, Nanos{5}, 1.5};
+  ExpectConfigRejected(config, "loss_bursts.loss");
 }
 
 }  // namespace

@@ -193,6 +193,33 @@ TEST_F(VehicleEndpointTest, RetriedRequestIsAnsweredFromCacheNotExecutedAgain) {
   EXPECT_EQ(handler_.commands, 2);
 }
 
+// A vehicle's reboot (agents::NonVolatileStore): a new endpoint restored from the
+// old one's state goes on with its report IDs and sequence numbers, re-sends the
+// reports not acknowledged with their IDs, and answers a retry of the last
+// request from the restored ack instead of executing it again.
+TEST_F(VehicleEndpointTest, RestoredStateKeepsCountersReportsAndTheLastRequest) {
+  const std::uint16_t first = endpoint_.QueueFireReport(FireReport{});
+  const std::uint16_t second = endpoint_.QueueFireReport(FireReport{});
+  const Command land{{kServerId, 42}, CommandType::kLand};
+  const auto acked = Frames({{kMe, FireReportAck{{kServerId, 7}, kMe, first}}, {kMe, land}});
+  const std::uint64_t changes = endpoint_.state_changes();
+  const std::uint16_t ack_sequence = HeaderOf(Only(endpoint_.OnReceive(kNow, acked))).sequence;
+  EXPECT_GT(endpoint_.state_changes(), changes);
+
+  CountingHandler handler;
+  VehicleEndpoint rebooted(Config(LinkMode::kPoll), handler);
+  rebooted.Restore(endpoint_.state());
+  ASSERT_EQ(rebooted.pending_reports(), 1U);
+  EXPECT_EQ(rebooted.QueueFireReport(FireReport{}), second + 1);
+  const auto resent =
+      Only(rebooted.OnReceive(2 * kNow, Frames({{kMe, PollFor(ReplyKind::kFireReport)}})));
+  EXPECT_EQ(std::get<FireReport>(resent).report_id, second);
+  EXPECT_EQ(HeaderOf(resent).sequence, ack_sequence + 1);
+  const auto retry = Only(rebooted.OnReceive(3 * kNow, Frames({{kMe, land}})));
+  EXPECT_EQ(std::get<CommandAck>(retry).acked_sequence, 42);
+  EXPECT_EQ(handler.commands, 0);
+}
+
 TEST_F(VehicleEndpointTest, ParamReadIsAnsweredWithTheHandlersValue) {
   const auto value = std::get<ParamValue>(
       Only(endpoint_.OnReceive(kNow, Frames({{kMe, ParamRead{{kServerId, 1}, 17}}}))));

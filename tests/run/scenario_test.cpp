@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <boost/geometry/algorithms/area.hpp>
 #include <boost/geometry/algorithms/covered_by.hpp>
 #include <cmath>
@@ -545,13 +546,58 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"FaultUnknownKind", Minimal("faults: [{vehicle: 1, at_s: 5, kind: explode}]\n"),
                  "faults[0].kind",
                  "must be one of stream_cut|frozen|bias|extra_noise|ballast|total_loss|"
-                 "radio_silent|server_restart, got explode"},
+                 "radio_silent|server_restart|vehicle_reboot|gps_loss|radio_burst, got explode"},
         BadInput{"ServerRestartWithAVehicle",
                  Minimal("faults: [{vehicle: 1, at_s: 5, kind: server_restart}]\n"),
                  "faults[0].vehicle", "server_restart concerns the server: it takes no vehicle"},
-        BadInput{"ServerRestartWithADuration",
-                 Minimal("faults: [{at_s: 5, kind: server_restart, duration_s: 10}]\n"),
-                 "faults[0].duration_s", "server_restart is instant"},
+        BadInput{"ServerRestartDownTooLong",
+                 Minimal("faults: [{at_s: 5, kind: server_restart, duration_s: 4000}]\n"),
+                 "faults[0].duration_s", "must be in (0, 3600], got 4000"},
+        BadInput{"ServerRestartDownZero",
+                 Minimal("faults: [{at_s: 5, kind: server_restart, duration_s: 0}]\n"),
+                 "faults[0].duration_s", "must be in (0, 3600], got 0"},
+        BadInput{"VehicleRebootWithoutAVehicle",
+                 Minimal("faults: [{at_s: 5, kind: vehicle_reboot}]\n"), "faults[0].vehicle",
+                 "missing (required)"},
+        BadInput{"VehicleRebootTooLong",
+                 Minimal("faults: [{vehicle: 1, at_s: 5, kind: vehicle_reboot, duration_s: 11}]\n"),
+                 "faults[0].duration_s", "must be in (0, 10], got 11"},
+        BadInput{"VehicleRebootWithASensor",
+                 Minimal("faults:\n  - {at_s: 1, kind: stream_cut, vehicle: 1}\n"
+                         "  - {vehicle: 2, at_s: 5, kind: vehicle_reboot, sensor: gps}\n"),
+                 "faults[1].sensor", "applies only to kind stream_cut|frozen|bias|extra_noise"},
+        BadInput{"VehicleRebootWithALoss",
+                 Minimal("faults: [{vehicle: 1, at_s: 5, kind: vehicle_reboot, loss: 0.5}]\n"),
+                 "faults[0].loss", "applies only to kind radio_burst"},
+        BadInput{"GpsLossWithASensor",
+                 Minimal("faults: [{vehicle: 1, at_s: 5, kind: gps_loss, sensor: baro}]\n"),
+                 "faults[0].sensor", "applies only to kind stream_cut|frozen|bias|extra_noise"},
+        BadInput{"GpsLossOfAnUnknownVehicle",
+                 Minimal("faults: [{vehicle: 7, at_s: 5, kind: gps_loss, duration_s: 5}]\n"),
+                 "faults[0].vehicle", "is not one of the fleet's receiver IDs 1..2, got 7"},
+        BadInput{"GpsLossDurationZero",
+                 Minimal("faults: [{vehicle: 1, at_s: 5, kind: gps_loss, duration_s: 0}]\n"),
+                 "faults[0].duration_s", "must be in (0, 86400], got 0"},
+        BadInput{"RadioBurstWithAVehicle",
+                 Minimal("faults: [{vehicle: 1, at_s: 5, kind: radio_burst, duration_s: 2, "
+                         "loss: 1}]\n"),
+                 "faults[0].vehicle",
+                 "radio_burst concerns every radio channel: it takes no vehicle"},
+        BadInput{"RadioBurstWithoutLoss",
+                 Minimal("faults: [{at_s: 5, kind: radio_burst, duration_s: 2}]\n"),
+                 "faults[0].loss", "missing (required)"},
+        BadInput{"RadioBurstLossZero",
+                 Minimal("faults: [{at_s: 5, kind: radio_burst, duration_s: 2, loss: 0}]\n"),
+                 "faults[0].loss", "must be in (0, 1], got 0"},
+        BadInput{"RadioBurstLossAboveOne",
+                 Minimal("faults: [{at_s: 5, kind: radio_burst, duration_s: 2, loss: 1.5}]\n"),
+                 "faults[0].loss", "must be in (0, 1], got 1.5"},
+        BadInput{"RadioBurstWithoutDuration",
+                 Minimal("faults: [{at_s: 5, kind: radio_burst, loss: 0.5}]\n"),
+                 "faults[0].duration_s", "missing (required)"},
+        BadInput{"LossOnAServerRestart",
+                 Minimal("faults: [{at_s: 5, kind: server_restart, loss: 0.5}]\n"),
+                 "faults[0].loss", "applies only to kind radio_burst"},
         BadInput{"VehicleFaultWithoutAVehicle", Minimal("faults: [{at_s: 5, kind: total_loss}]\n"),
                  "faults[0].vehicle", "missing (required)"},
         BadInput{"FaultUnknownVehicle",
@@ -672,11 +718,37 @@ TEST(ParseScenario, LaunchIsAListOfSitesWithTheirDronesAndSwapS) {
   EXPECT_TRUE(MakeFleetSpec(shared).site_drones.empty());
 }
 
+TEST(ParseScenario, ChaosFaultsReadTheirParametersAndDefaults) {
+  const Scenario scenario =
+      Parse(Minimal("faults:\n"
+                    "  - {vehicle: 1, at_s: 10, kind: vehicle_reboot}\n"
+                    "  - {vehicle: 2, at_s: 20, kind: vehicle_reboot, duration_s: 5}\n"
+                    "  - {vehicle: 1, at_s: 30, kind: gps_loss, duration_s: 8}\n"
+                    "  - {at_s: 40, kind: radio_burst, duration_s: 3, loss: 0.75}\n"
+                    "  - {at_s: 50, kind: server_restart}\n"
+                    "  - {at_s: 60, kind: server_restart, duration_s: 12}\n"));
+  ASSERT_EQ(scenario.faults.size(), 6U);
+  EXPECT_EQ(scenario.faults[0].kind, FaultKind::kVehicleReboot);
+  EXPECT_DOUBLE_EQ(scenario.faults[0].duration_s, kDefaultRebootS);
+  EXPECT_DOUBLE_EQ(scenario.faults[1].duration_s, 5.0);
+  EXPECT_EQ(scenario.faults[2].kind, FaultKind::kGpsLoss);
+  EXPECT_DOUBLE_EQ(scenario.faults[2].duration_s, 8.0);
+  EXPECT_EQ(scenario.faults[3].kind, FaultKind::kRadioBurst);
+  EXPECT_EQ(scenario.faults[3].vehicle, 0);
+  EXPECT_DOUBLE_EQ(scenario.faults[3].loss, 0.75);
+  EXPECT_DOUBLE_EQ(scenario.faults[3].duration_s, 3.0);
+  EXPECT_DOUBLE_EQ(scenario.faults[4].duration_s, 0.0);  // a restart at once
+  EXPECT_DOUBLE_EQ(scenario.faults[5].duration_s, 12.0);
+}
+
 TEST(ScenarioNames, RoundTripTheEnums) {
   EXPECT_EQ(ToString(FaultKind::kStreamCut), "stream_cut");
   EXPECT_EQ(ToString(FaultKind::kTotalLoss), "total_loss");
   EXPECT_EQ(ToString(FaultKind::kRadioSilent), "radio_silent");
   EXPECT_EQ(ToString(FaultKind::kServerRestart), "server_restart");
+  EXPECT_EQ(ToString(FaultKind::kVehicleReboot), "vehicle_reboot");
+  EXPECT_EQ(ToString(FaultKind::kGpsLoss), "gps_loss");
+  EXPECT_EQ(ToString(FaultKind::kRadioBurst), "radio_burst");
   EXPECT_EQ(ToString(FaultSensor::kBattery), "battery");
   EXPECT_EQ(ToString(planner::PlannerKind::kLawnmower), "lawnmower");
   EXPECT_EQ(ToString(planner::PlannerKind::kOmpl), "ompl");
@@ -732,6 +804,21 @@ TEST(RepositoryScenarios, RadioLossLosesATenthAndNoReport) {
     EXPECT_EQ(fault.kind, FaultKind::kServerRestart);
     EXPECT_EQ(fault.vehicle, 0);
   }
+}
+
+// Issue 19's chaos: every new fault kind at least once, and nothing may be lost.
+TEST(RepositoryScenarios, ChaosHasEveryChaosFaultAndExpectsNothingLost) {
+  const Scenario s = LoadScenario(RepoRoot() / "scenarios" / "chaos.yaml");
+  for (const FaultKind kind : {FaultKind::kVehicleReboot, FaultKind::kGpsLoss,
+                               FaultKind::kRadioBurst, FaultKind::kServerRestart}) {
+    EXPECT_TRUE(std::ranges::any_of(s.faults, [&](const FaultSpec& f) { return f.kind == kind; }))
+        << ToString(kind);
+  }
+  EXPECT_EQ(s.expect.max_reports_lost, 0);
+  EXPECT_EQ(s.expect.max_false_tracks, 0);
+  EXPECT_TRUE(s.expect.all_fires_confirmed_within_s.has_value());
+  EXPECT_TRUE(s.expect.no_collisions);
+  EXPECT_LE(s.fleet.count, 4);  // CI's budget: a small fleet
 }
 
 TEST(RepositoryScenarios, LostDroneLosesOneMidMissionAndStillCovers) {

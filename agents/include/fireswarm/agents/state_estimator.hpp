@@ -31,13 +31,27 @@ struct Estimate {
   double gps_age_s = 0.0;  ///< since the last fix
 };
 
+/// How long after its last GPS fix the estimate still moves the position with
+/// that fix's velocity, s (ten fixes at the seed's 10 Hz).
+inline constexpr double kMaxDeadReckoningS = 1.0;
+
 class StateEstimator {
  public:
   /// Folds in this step's samples. The local frame is set on the first GPS fix
-  /// (its origin there), so the vehicle needs no configured origin.
+  /// (its origin there), so the vehicle needs no configured origin. Without fixes
+  /// the position is carried on with the last fix's velocity for at most
+  /// kMaxDeadReckoningS, then held (the velocity is no longer known).
   void Update(Nanos now, const SensorInputs& inputs);
   /// Takes the current barometric altitude as zero (on the ground, before take-off).
   void ZeroAltitude();
+  /// The barometer reading altitudes are measured from, m; nullopt before the
+  /// first reading.
+  std::optional<double> altitude_zero_m() const {
+    return baro_zeroed_ ? std::optional<double>(baro_zero_m_) : std::nullopt;
+  }
+  /// Measures altitudes from `baro_zero_m` (a restart in the air: the zero taken
+  /// on the ground before take-off, kept in non-volatile storage).
+  void RestoreAltitudeZero(double baro_zero_m);
 
   const Estimate& estimate() const { return estimate_; }
   /// estimate().position_local as WGS84 latitude and longitude (0, 0 before the

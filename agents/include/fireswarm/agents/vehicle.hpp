@@ -13,6 +13,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <span>
 #include <vector>
@@ -22,6 +23,7 @@
 #include "fireswarm/agents/loiter.hpp"
 #include "fireswarm/agents/mission_store.hpp"
 #include "fireswarm/agents/navigation.hpp"
+#include "fireswarm/agents/non_volatile_store.hpp"
 #include "fireswarm/agents/params.hpp"
 #include "fireswarm/agents/state_estimator.hpp"
 #include "fireswarm/agents/vehicle_io.hpp"
@@ -36,6 +38,13 @@ struct VehicleConfig {
   radio::VehicleEndpointConfig radio;
   /// The parameter file (the seed's EEPROM); empty keeps parameters in memory only.
   std::filesystem::path param_file;
+  /// What survives a restart of the vehicle's software: parameters, missions,
+  /// where it was in its flight, radio counters and unacknowledged reports. A
+  /// Vehicle made with a store that holds records resumes from them (a reboot);
+  /// null keeps nothing. Shared so the owner can hand it to the next Vehicle.
+  /// In secure mode the owner also persists radio.security through it
+  /// (NonVolatileStore::WriteSecurity).
+  std::shared_ptr<NonVolatileStore> storage;
   /// The thermal camera carried; its mount pitch is the parameter camera.pitch_deg.
   common::CameraModel camera = common::CameraModelByName("seed");
   /// Detector tuning; nullopt takes FireDetectorConfigFor(camera).
@@ -54,12 +63,24 @@ struct VehicleStats {
   std::uint64_t commands_rejected = 0;
   std::uint64_t link_lost_returns = 0;
   std::uint64_t low_battery_returns = 0;
-  std::uint64_t avoid_orders = 0;  ///< the server's avoid orders taken
+  std::uint64_t avoid_orders = 0;       ///< the server's avoid orders taken
+  std::uint64_t gps_lost_landings = 0;  ///< landed where it was: no GPS for kGpsLostLandAfterS
 };
+
+/// No GPS fix for this long and the vehicle has lost its GPS, s: it levels off
+/// and holds its altitude (drifting with the wind), geolocates nothing and
+/// reports no fix, until fixes come back (ten fixes at the seed's 10 Hz).
+inline constexpr double kGpsLostAfterS = kMaxDeadReckoningS;
+/// No GPS fix for this long in the air and the vehicle lands where it is, s.
+inline constexpr double kGpsLostLandAfterS = 30.0;
 
 class Vehicle final : public radio::VehicleRequestHandler {
  public:
-  /// Loads the parameter file if it exists. Throws std::invalid_argument for a bad
+  /// Loads the parameter file if it exists, then what config.storage holds (a
+  /// reboot): parameters, missions, radio counters and unacknowledged reports at
+  /// once; its flight (mode, mission, waypoint, home, altitude zero) at its first
+  /// step with a position, an attitude and an altitude: until then, in the air,
+  /// it flies level at zero climb rate. Throws std::invalid_argument for a bad
   /// configuration, std::runtime_error naming the file when it is corrupt.
   explicit Vehicle(const VehicleConfig& config);
 
@@ -95,9 +116,20 @@ class Vehicle final : public radio::VehicleRequestHandler {
   std::uint16_t active_mission() const { return active_mission_; }
   /// Home: where the vehicle took off (unset before the first take-off).
   const std::optional<common::LatLon>& home() const { return home_; }
+  /// True while its GPS is lost (no fix for kGpsLostAfterS after a first one).
+  bool gps_lost() const;
+  /// True from a reboot until its stored flight is resumed.
+  bool resuming() const { return resume_.has_value(); }
+  /// Its flight as it would be stored now (what config.storage holds after a step).
+  FlightRecord flight_record() const;
 
  private:
   void ApplyParams();
+  void Reload(const NonVolatileStore& storage);
+  /// Resumes the stored flight once the estimate allows; false while it waits.
+  bool ResumeFlight(Nanos now);
+  void SaveFlight();
+  void SaveEndpoint();
   void EnterMode(radio::FlightMode mode, Nanos now);
   void StartRoute(std::vector<RoutePoint> route, std::size_t start_index);
   void HoldHere(double altitude_m);
@@ -162,6 +194,9 @@ class Vehicle final : public radio::VehicleRequestHandler {
   /// the mode says (a landing waits level meanwhile).
   std::optional<double> avoid_altitude_m_;
   Nanos avoid_until_{0};
+  /// After a reboot: the stored flight, resumed at the first step that can.
+  std::optional<FlightRecord> resume_;
+  std::uint64_t endpoint_saved_at_ = 0;  ///< endpoint_.state_changes() at the last save
 };
 
 }  // namespace fireswarm::agents

@@ -36,6 +36,10 @@ class LockstepFleet {
   /// Flies `vehicle` as the world's vehicle of the same ID. Throws
   /// std::invalid_argument when the world has no such vehicle.
   void Add(agents::Vehicle& vehicle);
+  /// Stops stepping vehicle `id` (its software is down): the simulator keeps
+  /// acting on its last commands, as motor controllers hold their last outputs.
+  /// Nothing happens when it is not in the fleet.
+  void Remove(int id);
 
   void Step();
   /// Steps until the simulated time reaches `time_s`.

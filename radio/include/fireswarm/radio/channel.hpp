@@ -34,6 +34,16 @@ struct RangeModel {
   double bit_error_rate_at_max_range = 1e-3;
 };
 
+/// A window of extra loss on the channel: a burst of interference (or a jammer)
+/// that every receiver suffers. A transmission that ends in [from, until) is lost
+/// for each receiver with probability `loss` besides the channel's own loss, drawn
+/// from the channel's generator: 1 - (1 - own) * (1 - loss) in all.
+struct LossBurst {
+  Nanos from{0};
+  Nanos until{0};
+  double loss = 1.0;  ///< in [0, 1]; 1 is a dead channel for the window
+};
+
 struct ChannelConfig {
   int baud = 57'600;
   int bits_per_byte = kBitsPerByte8N1;
@@ -43,9 +53,13 @@ struct ChannelConfig {
   double loss = 0.0;            ///< probability a transmission is lost for one receiver
   double bit_error_rate = 0.0;  ///< probability each received data bit is flipped
   RangeModel range;
+  /// Windows of extra loss (LossBurst), in any order; they may overlap (the
+  /// highest loss applies).
+  std::vector<LossBurst> loss_bursts;
   /// Throws std::invalid_argument naming the field when a value is out of range
   /// (baud <= 0, bits_per_byte < 8, negative turnaround, a probability outside
-  /// [0, 1], a negative or NaN range, max_range_m < clean_range_m).
+  /// [0, 1], a negative or NaN range, max_range_m < clean_range_m, a loss burst
+  /// that ends before it starts).
   void Validate() const;
 };
 
@@ -157,6 +171,8 @@ class SharedChannel {
   void Resolve(const Transmission& transmission);
   void Deliver(const Transmission& transmission, RadioId receiver);
   double RangeFactor(const Radio& from, const Radio& to) const;
+  /// The highest loss of the loss bursts active at `t` (0 outside them).
+  double BurstLossAt(Nanos t) const;
 
   ChannelConfig config_;
   std::mt19937_64 rng_;

@@ -22,7 +22,11 @@ common::SecretKey SimulationKey(std::uint64_t seed, std::uint8_t key_id);
 std::shared_ptr<FrameSecurity> SimulationServerSecurity(std::uint64_t seed,
                                                         std::span<const std::uint8_t> vehicles);
 
-/// Vehicle `id`'s security with its simulation key and the broadcast key.
-std::shared_ptr<FrameSecurity> SimulationVehicleSecurity(std::uint64_t seed, std::uint8_t id);
+/// Vehicle `id`'s security with its simulation key and the broadcast key; a
+/// vehicle restarting passes the state it persisted (its counter and replay
+/// floors) and where to persist the next one (FrameSecurity's constructor).
+std::shared_ptr<FrameSecurity> SimulationVehicleSecurity(std::uint64_t seed, std::uint8_t id,
+                                                         SecurityState restored = {},
+                                                         PersistSecurityState persist = {});
 
 }  // namespace fireswarm::radio

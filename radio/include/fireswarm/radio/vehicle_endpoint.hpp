@@ -67,6 +67,26 @@ struct VehicleEndpointStats {
   std::uint64_t turns_skipped = 0;    ///< turns not taken: late, overlapping or too small
 };
 
+/// The last request a vehicle handled and its answer: a retry of it (same message
+/// ID and sequence) is answered from here, not executed again.
+struct HandledRequest {
+  MessageId id{};
+  std::uint16_t sequence = 0;
+  Message ack;
+};
+
+/// What a vehicle keeps across a restart of its software (its non-volatile
+/// storage, agents::NonVolatileStore): the counters the server tells its frames
+/// and reports apart by, the fire reports not yet acknowledged (re-sent with
+/// their IDs after the restart) and the last request handled (a retry of it is
+/// not executed twice).
+struct VehicleEndpointState {
+  std::uint16_t next_report_id = 0;
+  std::uint16_t next_sequence = 0;
+  std::vector<FireReport> reports;  ///< oldest first, unacknowledged
+  std::optional<HandledRequest> last_request;
+};
+
 class VehicleEndpoint {
  public:
   /// `handler` must outlive the endpoint. Throws std::invalid_argument when the
@@ -91,16 +111,19 @@ class VehicleEndpoint {
   std::uint16_t QueueFireReport(const FireReport& report);
 
   std::size_t pending_reports() const { return reports_.size(); }
+
+  /// The state a restart must keep (see VehicleEndpointState).
+  VehicleEndpointState state() const;
+  /// Takes over `state` kept from before a restart. Never throws; reports beyond
+  /// max_queued_reports are dropped oldest first (counted).
+  void Restore(const VehicleEndpointState& state);
+  /// Counts every change of state(): a caller that keeps it saves it when this moved.
+  std::uint64_t state_changes() const { return state_changes_; }
   const VehicleEndpointConfig& config() const { return config_; }
   const VehicleEndpointStats& stats() const { return stats_; }
   const ParserStats& parser_stats() const { return parser_.stats(); }
 
  private:
-  struct HandledRequest {
-    MessageId id;
-    std::uint16_t sequence;
-    Message ack;
-  };
   struct Received {
     Message message;
     Nanos frame_end;  // when its last byte arrived
@@ -127,6 +150,7 @@ class VehicleEndpoint {
   std::uint16_t next_sequence_ = 0;
   std::optional<HandledRequest> last_request_;
   Nanos transmitting_until_{0};  // end of the latest burst handed out
+  std::uint64_t state_changes_ = 0;
   VehicleEndpointStats stats_;
 };
 

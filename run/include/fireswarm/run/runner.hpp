@@ -73,6 +73,7 @@ struct RunResult {
   std::string mission_state;  ///< the server's mission state at the end ("complete", ...)
   int server_restarts = 0;    ///< by server_restart faults and RunOptions::restart_server_when
   int missions = 0;           ///< missions started: 1, or a patrol's rounds
+  int vehicle_reboots = 0;    ///< vehicle_reboot faults done (the vehicle back up)
 };
 
 /// Plans the search (planner::PlanSearch with the fleet's planner and the

@@ -33,10 +33,12 @@ class ScenarioError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-/// What a fault does to one vehicle, or to the server. The first six are sim2d's
-/// FaultKind (sim2d/faults.hpp), by the same names; kRadioSilent has no sim2d
-/// counterpart: the runner stops carrying the vehicle's radio bytes both ways for
-/// the window. kServerRestart is the server's: it concerns no vehicle.
+/// What a fault does to one vehicle, to the server or to the radio. The first six
+/// are sim2d's FaultKind (sim2d/faults.hpp), by the same names, and kGpsLoss is
+/// sim2d's stream cut of the GPS; kRadioSilent has no sim2d counterpart: the
+/// runner stops carrying the vehicle's radio bytes both ways for the window.
+/// kServerRestart is the server's and kRadioBurst the radio channel's: they
+/// concern no vehicle. kVehicleReboot restarts one vehicle's software.
 enum class FaultKind : std::uint8_t {
   kStreamCut,    ///< "stream_cut": the sensor delivers nothing
   kFrozen,       ///< "frozen": the sensor repeats its last value
@@ -45,9 +47,18 @@ enum class FaultKind : std::uint8_t {
   kBallast,      ///< "ballast": the centre of mass moves by `ballast_offset_m`
   kTotalLoss,    ///< "total_loss": the vehicle is gone for good at `at_s` (no duration)
   kRadioSilent,  ///< "radio_silent": the vehicle neither hears nor is heard
-  /// "server_restart": the server dies at `at_s` and a new one takes over at once,
-  /// restored from the old one's journal as `fireswarm serve --journal` would be
+  /// "server_restart": the server dies at `at_s` and a new one takes over after
+  /// `duration_s` (0: at once), restored from the old one's journal as
+  /// `fireswarm serve --journal` would be
   kServerRestart,
+  /// "vehicle_reboot": the vehicle's software restarts: down for `duration_s`
+  /// (kDefaultRebootS), then a new Vehicle reloads its non-volatile storage
+  kVehicleReboot,
+  /// "gps_loss": the GPS delivers nothing for `duration_s` (sim2d's stream cut)
+  kGpsLoss,
+  /// "radio_burst": every reception on every radio channel is lost with
+  /// probability `loss` for `duration_s`
+  kRadioBurst,
 };
 
 /// The sensor a sensor fault (stream_cut, frozen, bias, extra_noise) acts on;
@@ -81,6 +92,13 @@ inline constexpr std::string_view kDefaultCamera = "seed";
 /// (3.2 m median, 16 seeds), so two neighbours landing together need ~20 m (10 m
 /// let them close to 1.5 m; docs/scenario.md).
 inline constexpr double kDefaultStandSpacingM = 20.0;
+/// How long a rebooting vehicle's autopilot is down by default, s: a small
+/// autopilot's boot to its first control step (a bootloader, the firmware's
+/// start, the sensors' first samples).
+inline constexpr double kDefaultRebootS = 2.0;
+/// A reboot's down time may be at most this long, s: beyond it the vehicle,
+/// its motors holding their last outputs, is falling out of the sky, not rebooting.
+inline constexpr double kMaxRebootS = 10.0;
 
 /// One launch site of the fleet.
 struct LaunchSiteConfig {
@@ -176,18 +194,22 @@ struct WindSpec {
   double from_deg = 0.0;  ///< where it blows from, clockwise from true north, [0, 360)
 };
 
-/// One fault of one vehicle, active for at_s <= t < at_s + duration_s.
+/// One fault of one vehicle (or of the server, or the radio), active for
+/// at_s <= t < at_s + duration_s.
 struct FaultSpec {
-  int vehicle = 0;  ///< receiver ID, one of the fleet's; 0 for kServerRestart
+  int vehicle = 0;  ///< receiver ID, one of the fleet's; 0 for kServerRestart, kRadioBurst
   double at_s = 0.0;
   FaultKind kind = FaultKind::kStreamCut;
-  double duration_s = std::numeric_limits<double>::infinity();  ///< inf: to the end
-  FaultSensor sensor = FaultSensor::kGps;                       ///< sensor faults only
+  /// inf: to the end. kServerRestart: its down time, 0 (at once) unless given;
+  /// kVehicleReboot: kDefaultRebootS unless given.
+  double duration_s = std::numeric_limits<double>::infinity();
+  FaultSensor sensor = FaultSensor::kGps;  ///< sensor faults only
   /// kBias, per sensor: GPS (east_m, north_m, up_m); baro (altitude_m, -, -);
   /// attitude (roll_rad, pitch_rad, heading_rad); battery (voltage_v, -, -).
   std::array<double, 3> bias{0.0, 0.0, 0.0};
   double noise_factor = 1.0;                         ///< kExtraNoise: > 1
   std::array<double, 2> ballast_offset_m{0.0, 0.0};  ///< kBallast: (forward_m, right_m)
+  double loss = 0.0;  ///< kRadioBurst: probability in (0, 1] a reception is lost
 };
 
 /// Assertions checked against the report; an absent one is not checked.
