@@ -542,7 +542,7 @@ std::vector<AvoidOrder> TrafficControl::Step(double now_s) {
     auto open = open_.find(p.pair);
     if (open == open_.end()) {
       Conflict conflict;
-      conflict.id = static_cast<std::int32_t>(conflicts_.size() + 1);
+      conflict.id = static_cast<std::int32_t>(conflicts_dropped_ + conflicts_.size() + 1);
       conflict.vehicle_a = p.pair.first;
       conflict.vehicle_b = p.pair.second;
       conflict.detected_s = now_s;
@@ -553,7 +553,7 @@ std::vector<AvoidOrder> TrafficControl::Step(double now_s) {
       conflict.observed_min_separation_m =
           std::hypot((a.position_m - b.position_m).norm(), a.altitude_m - b.altitude_m);
       conflicts_.push_back(conflict);
-      open = open_.emplace(p.pair, conflicts_.size() - 1).first;
+      open = open_.emplace(p.pair, conflicts_dropped_ + conflicts_.size() - 1).first;
       ++counts_.conflicts;
       conflicts_.back().version = ++version_;
     }
@@ -604,15 +604,15 @@ std::vector<AvoidOrder> TrafficControl::Step(double now_s) {
     const double order_s =
         std::clamp(p.approach.window_end_s + kOrderTailS, kMinOrderS, kMaxOrderS);
     orders_[best.mover] = Held{best.altitude_m, now_s + order_s, now_s,
-                               best.resolution == Resolution::kLevel, conflicts_[open->second].id};
+                               best.resolution == Resolution::kLevel, ConflictAt(open->second).id};
     // Later pairs see the order.
     Motion& mover = motions[index_of(best.mover)];
     mover.target_m = best.altitude_m;
     mover.target_after_s = kOrderDelayS;
     last_order_s_[p.pair] = now_s;
-    out.push_back({best.mover, best.altitude_m, order_s, conflicts_[open->second].id});
+    out.push_back({best.mover, best.altitude_m, order_s, ConflictAt(open->second).id});
     ++counts_.orders;
-    Conflict& conflict = conflicts_[open->second];
+    Conflict& conflict = ConflictAt(open->second);
     conflict.resolution = best.resolution;
     conflict.mover = best.mover;
     conflict.target_altitude_m = best.altitude_m;
@@ -622,7 +622,7 @@ std::vector<AvoidOrder> TrafficControl::Step(double now_s) {
 
   // What the telemetry says of the open ones; those no longer predicted close.
   for (auto it = open_.begin(); it != open_.end();) {
-    Conflict& conflict = conflicts_[it->second];
+    Conflict& conflict = ConflictAt(it->second);
     const std::size_t a = index_of(conflict.vehicle_a);
     const std::size_t b = index_of(conflict.vehicle_b);
     const bool both = a < motions.size() && b < motions.size();
@@ -649,8 +649,18 @@ std::vector<AvoidOrder> TrafficControl::Step(double now_s) {
     ++(conflict.outcome == ConflictOutcome::kResolved ? counts_.resolved : counts_.lost_separation);
     conflict.closed_s = now_s;
     conflict.version = ++version_;
+    if (conflict.outcome == ConflictOutcome::kLostSeparation && lost_.size() < kKeptLost) {
+      lost_.push_back(conflict);
+    }
     last_order_s_.erase(it->first);
     it = open_.erase(it);
+  }
+  // The oldest closed ones go once more are kept (an open one stays, and those
+  // after it with it).
+  while (conflicts_.size() > kKeptConflicts &&
+         conflicts_.front().outcome != ConflictOutcome::kOpen) {
+    conflicts_.pop_front();
+    ++conflicts_dropped_;
   }
 
   // A level order holds a take-off or a landing where it is: kept to its end,

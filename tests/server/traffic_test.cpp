@@ -529,3 +529,52 @@ TEST(SeparationConfig, RefusesBadValuesNamingTheField) {
 
 }  // namespace
 }  // namespace fireswarm::server
+
+namespace fireswarm::server {
+namespace {
+
+// A server on watch for days: the conflict list keeps every open one and the
+// latest closed ones (kKeptConflicts), the counts keep them all, and the ones
+// that lost separation are kept apart for the report.
+TEST(TrafficControl, KeepsTheLatestConflictsAndEveryLostOneOnALongWatch) {
+  SeparationConfig config;
+  config.resolve = false;
+  TrafficControl watch(config);
+  const auto report = [&](int id, double north_m, double north_mps, double t) {
+    TrafficSample sample;
+    sample.position_m = {0.0, north_m, 60.0};
+    sample.velocity_mps = {0.0, north_mps, 0.0};
+    sample.at_s = t;
+    watch.Observe(id, sample);
+  };
+  constexpr std::size_t kEncounters = TrafficControl::kKeptConflicts + 200;
+  double t = 0.0;
+  for (std::size_t k = 0; k < kEncounters; ++k) {
+    report(1, -100.0, 10.0, t);  // head-on, 200 m apart
+    report(2, 100.0, -10.0, t);
+    watch.Step(t);
+    t += 1.0;
+    if (k % 100 == 0) {  // every hundredth pair comes within 4 m
+      report(1, -2.0, 10.0, t);
+      report(2, 2.0, -10.0, t);
+      watch.Step(t);
+      t += 1.0;
+    }
+    report(1, 150.0, 10.0, t);  // past each other
+    report(2, -150.0, -10.0, t);
+    watch.Step(t);
+    t += 1.0;
+  }
+  EXPECT_EQ(watch.counts().conflicts, kEncounters);
+  ASSERT_EQ(watch.conflicts().size(), TrafficControl::kKeptConflicts);
+  EXPECT_EQ(watch.conflicts().back().id, static_cast<std::int32_t>(kEncounters));
+  EXPECT_EQ(watch.conflicts().front().id,
+            static_cast<std::int32_t>(kEncounters - TrafficControl::kKeptConflicts + 1));
+  EXPECT_EQ(watch.counts().lost_separation, 12U);
+  ASSERT_EQ(watch.lost().size(), 12U);
+  EXPECT_EQ(watch.lost().front().id, 1);
+  EXPECT_LT(watch.lost().front().observed_min_separation_m, 5.0);
+}
+
+}  // namespace
+}  // namespace fireswarm::server

@@ -17,6 +17,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <deque>
 #include <map>
 #include <optional>
 #include <string>
@@ -189,7 +190,15 @@ class TrafficControl {
   /// Whether Step(now_s) would run (kStepS since the last that did).
   bool Due(double now_s) const { return now_s >= last_step_s_ + kStepS; }
 
-  const std::vector<Conflict>& conflicts() const { return conflicts_; }
+  /// Every open conflict and the latest closed ones, kKeptConflicts in all at
+  /// most (more only while more are open), in detection order: a server on
+  /// watch for days keeps what an operator looks at, and counts() the rest.
+  const std::deque<Conflict>& conflicts() const { return conflicts_; }
+  static constexpr std::size_t kKeptConflicts = 1'000;
+  /// The conflicts that lost separation, in the order they closed: the first
+  /// kKeptLost of them (counts().lost_separation counts them all).
+  const std::vector<Conflict>& lost() const { return lost_; }
+  static constexpr std::size_t kKeptLost = 1'000;
   /// Rises whenever a conflict is added or changes.
   std::uint64_t version() const { return version_; }
   const TrafficCounts& counts() const { return counts_; }
@@ -221,11 +230,15 @@ class TrafficControl {
   // Drops the reservations older than kDepartureHoldS, but not of a drone an
   // avoid order holds.
   void LapseReservations(double now_s);
-  std::map<int, Held> orders_;                          // vehicle -> its standing avoid order
-  std::map<std::pair<int, int>, std::size_t> open_;     // pair -> index in conflicts_
+  std::map<int, Held> orders_;  // vehicle -> its standing avoid order
+  // pair -> its conflict's index among every conflict ever opened (id - 1)
+  std::map<std::pair<int, int>, std::size_t> open_;
   std::map<std::pair<int, int>, double> last_order_s_;  // pair -> when it was last resolved
   double last_step_s_ = -1.0e9;
-  std::vector<Conflict> conflicts_;
+  std::deque<Conflict> conflicts_;
+  std::size_t conflicts_dropped_ = 0;  // the oldest closed ones, gone from conflicts_
+  Conflict& ConflictAt(std::size_t index) { return conflicts_[index - conflicts_dropped_]; }
+  std::vector<Conflict> lost_;
   std::uint64_t version_ = 0;
   TrafficCounts counts_;
 };
