@@ -3,7 +3,7 @@
 // simulated day) in one process and samples, every simulated hour (--sample-s), the
 // process's memory (resident set and the bytes malloc holds in use) and the size
 // of every store of the server's that could grow with time: fire tracks and the
-// reports they hold, report receipts, conflicts, operator commands,
+// reports they keep, the report IDs the duplicate check remembers, conflicts, operator commands,
 // investigations, and the journal a restart would read.
 //
 // --check exits 1 when the memory in use grew by more than --max-growth (5 %
@@ -48,7 +48,7 @@ struct Sample {
   int round = 0;
   std::size_t tracks = 0;
   std::size_t track_reports = 0;
-  std::size_t receipts = 0;
+  std::size_t remembered = 0;  // report IDs the duplicate check holds
   std::size_t conflicts = 0;
   std::size_t commands = 0;
   std::size_t investigations = 0;
@@ -71,13 +71,13 @@ double InUseMib() {
 
 void PrintHeader() {
   std::printf("%6s %7s %5s %8s %8s %6s %8s %8s %9s %8s %6s %8s\n", "sim h", "wall s", "round",
-              "RSS MiB", "use MiB", "tracks", "t.rep", "receipts", "conflicts", "commands",
-              "invest", "journal");
+              "RSS MiB", "use MiB", "tracks", "t.rep", "seen", "conflicts", "commands", "invest",
+              "journal");
 }
 
 void Print(const Sample& s) {
   std::printf("%6.1f %7.0f %5d %8.1f %8.2f %6zu %8zu %8zu %9zu %8zu %6zu %8zu\n", s.sim_h, s.wall_s,
-              s.round, s.resident_mib, s.in_use_mib, s.tracks, s.track_reports, s.receipts,
+              s.round, s.resident_mib, s.in_use_mib, s.tracks, s.track_reports, s.remembered,
               s.conflicts, s.commands, s.investigations, s.journal);
   std::fflush(stdout);
 }
@@ -166,7 +166,7 @@ int main(int argc, char** argv) {
       s.round = progress.missions;
       s.tracks = server->fusion().tracks().size();
       for (const auto& track : server->fusion().tracks()) s.track_reports += track.reports.size();
-      s.receipts = server->report_receipts().size();
+      s.remembered = server->fusion().state().seen.size();
       s.conflicts = server->traffic().conflicts().size();
       s.commands = server->commands().size();
       s.investigations = server->investigations().size();

@@ -238,7 +238,7 @@ class Lockstep {
     server_->LoadMission(std::move(missions), t_s, planned.airspace);
     // What only the rounds before needed goes: the journal stays one round long.
     KeepJournal();
-    journal_ = server::CompactJournal(std::move(journal_));
+    journal_ = server::CompactJournal(std::move(journal_), server_->config().fusion);
     Start(t_s);
   }
   /// Missions started so far (1 + a patrol's rounds).

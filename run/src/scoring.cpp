@@ -96,39 +96,6 @@ double Percentile(std::vector<double> values, double p) {
   return values[std::min(index, values.size() - 1)];
 }
 
-std::size_t AgeHistogram::BinOf(double age_s) {
-  constexpr std::size_t kFine = 1'000;  // 10 ms each, to 10 s
-  constexpr std::size_t kCoarse = 990;  // 1 s each, to 1000 s
-  if (!(age_s > 0.0)) return 0;
-  if (age_s < 10.0) return std::min(kFine - 1, static_cast<std::size_t>(age_s * 100.0));
-  if (age_s < 1'000.0) return kFine + std::min(kCoarse - 1, static_cast<std::size_t>(age_s - 10.0));
-  return kFine + kCoarse;  // beyond: one bin
-}
-
-double AgeHistogram::UpperEdgeS(std::size_t bin) {
-  if (bin < 1'000) return static_cast<double>(bin + 1) / 100.0;
-  if (bin < 1'990) return 10.0 + static_cast<double>(bin - 1'000 + 1);
-  return std::numeric_limits<double>::infinity();
-}
-
-void AgeHistogram::Add(double age_s) {
-  if (bins_.empty()) bins_.assign(1'991, 0);
-  ++bins_[BinOf(age_s)];
-  ++count_;
-  max_s_ = std::max(max_s_, age_s);
-}
-
-double AgeHistogram::Percentile(double p) const {
-  if (count_ == 0) return 0.0;
-  const double rank = std::max(1.0, std::ceil(p * static_cast<double>(count_)));
-  std::uint64_t seen = 0;
-  for (std::size_t bin = 0; bin < bins_.size(); ++bin) {
-    seen += bins_[bin];
-    if (static_cast<double>(seen) >= rank) return std::min(UpperEdgeS(bin), max_s_);
-  }
-  return max_s_;
-}
-
 Scorer::Scorer(const Scenario& scenario, std::vector<FireSpec> fires)
     : scenario_(scenario),
       fires_(std::move(fires)),
@@ -375,24 +342,13 @@ void Scorer::ScoreRadio(const server::Server& server, const FinalState& final_st
                                          trace.telemetry_ages_s.Percentile(0.99)};
   }
   radio.retries = server.scheduler().stats().retries;
-  // Detection times of every report the fusion holds, by (vehicle, report ID).
-  std::map<std::pair<std::uint8_t, std::uint16_t>, double> detected_s;
-  for (const server::FireTrack& track : server.fusion().tracks()) {
-    for (const server::FireObservation& o : track.reports) {
-      detected_s[{o.vehicle_id, o.report_id}] = o.detection_time_s;
-    }
-  }
-  std::vector<double> latencies;
-  for (const auto& [key, received_s] : server.report_receipts()) {
-    const auto found = detected_s.find(key);
-    if (found != detected_s.end()) latencies.push_back(std::max(0.0, received_s - found->second));
-  }
-  if (!latencies.empty()) {
-    radio.report_latency_p50_s = Percentile(latencies, 0.5);
-    radio.report_latency_p99_s = Percentile(latencies, 0.99);
+  const server::ReportStats& fused = server.report_stats();
+  if (!fused.latency_s.empty()) {
+    radio.report_latency_p50_s = fused.latency_s.Percentile(0.5);
+    radio.report_latency_p99_s = fused.latency_s.Percentile(0.99);
   }
   radio.reports_sent = final_state.reports_queued;
-  radio.reports_received = server.report_receipts().size();
+  radio.reports_received = fused.fused;
   radio.reports_lost =
       radio.reports_sent > radio.reports_received ? radio.reports_sent - radio.reports_received : 0;
 }

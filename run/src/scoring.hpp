@@ -30,6 +30,7 @@
 #include <optional>
 #include <vector>
 
+#include "fireswarm/common/age_histogram.hpp"
 #include "fireswarm/planner/coverage_grid.hpp"
 #include "fireswarm/run/report.hpp"
 #include "fireswarm/run/scenario.hpp"
@@ -50,27 +51,6 @@ inline constexpr double kVisibleExcessK = 10.0;
 /// local ENU metres; nullopt when none is hot (not started, or burned out).
 std::optional<sim2d::Vec2> FireHotCentre(const sim2d::FireGrid& grid,
                                          const sim2d::Vec2& ignition_m);
-
-/// A distribution of ages (telemetry ages, s) in fixed memory, however long the
-/// run: 10 ms bins below 10 s, 1 s bins to 1000 s, one bin above. Percentile()
-/// is the nearest-rank percentile's bin's upper edge, at most the largest age
-/// added: within 10 ms of the exact value below 10 s.
-class AgeHistogram {
- public:
-  void Add(double age_s);
-  bool empty() const { return count_ == 0; }
-  std::uint64_t count() const { return count_; }
-  /// p in (0, 1]; 0 when empty.
-  double Percentile(double p) const;
-
- private:
-  static std::size_t BinOf(double age_s);
-  static double UpperEdgeS(std::size_t bin);
-
-  std::vector<std::uint32_t> bins_;  // allocated at the first Add
-  std::uint64_t count_ = 0;
-  double max_s_ = 0.0;
-};
 
 /// At most this many points of a vehicle's track are kept for the report's map:
 /// when full, every other point goes and the sampling interval doubles, so a day
@@ -115,7 +95,7 @@ class Scorer {
     std::vector<common::LatLon> track;  // at most kMaxTrackPoints
     int track_every = 1;                // samples per kept point (doubles when full)
     int track_skipped = 0;              // samples since the last kept point
-    AgeHistogram telemetry_ages_s;
+    common::AgeHistogram telemetry_ages_s;
   };
 
   void ObserveSeparation(const sim2d::World& world);

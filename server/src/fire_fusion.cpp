@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
-#include <set>
+#include <map>
 #include <stdexcept>
 #include <string>
 
@@ -68,35 +68,26 @@ struct Estimate {
   Eigen::Matrix2d covariance_en_m2 = Eigen::Matrix2d::Zero();
 };
 
-// Batch fusion of a track's reports, always from scratch and in a fixed order
-// (vehicles ascending, each vehicle's reports in arrival order), so that a
-// track restored from its reports gets bit-identical numbers.
-Estimate FuseReports(const std::vector<FireObservation>& reports, const FireFusionConfig& config) {
-  struct Information {
-    Eigen::Matrix2d matrix = Eigen::Matrix2d::Zero();  // sum of N^-1, 1/m^2
-    Eigen::Vector2d vector = Eigen::Vector2d::Zero();  // sum of N^-1 z, 1/m
-  };
-  // Step 1: per vehicle, the independent parts weighted by their information.
-  std::map<std::uint8_t, Information> per_vehicle;
-  for (const FireObservation& report : reports) {
-    const Eigen::Matrix2d information = IndependentCovariance(report, config).inverse();
-    Information& sum = per_vehicle[report.vehicle_id];
-    sum.matrix += information;
-    sum.vector += information * report.position_en_m;
-  }
-  // Step 2: each vehicle's estimate carries its bias once; vehicles are independent.
+// Fusion of a track's evidence, always in a fixed order (vehicles ascending),
+// so that a track restored from its evidence gets bit-identical numbers. Each
+// vehicle's evidence is the information sum of its reports' independent parts
+// (Absorb); here each vehicle's estimate carries its bias once, and vehicles
+// are fused as independent.
+Estimate FuseEvidence(const std::vector<VehicleEvidence>& evidence,
+                      const FireFusionConfig& config) {
   const Eigen::Matrix2d bias = BiasCovariance(config);
-  Information total;
-  for (const auto& [vehicle, sum] : per_vehicle) {
-    const Eigen::Matrix2d independent = sum.matrix.inverse();
-    const Eigen::Vector2d position = independent * sum.vector;
+  Eigen::Matrix2d total_information = Eigen::Matrix2d::Zero();  // 1/m^2
+  Eigen::Vector2d total_vector = Eigen::Vector2d::Zero();       // 1/m
+  for (const VehicleEvidence& vehicle : evidence) {
+    const Eigen::Matrix2d independent = vehicle.information_en.inverse();
+    const Eigen::Vector2d position = independent * vehicle.information_vector_en;
     const Eigen::Matrix2d information = (independent + bias).inverse();
-    total.matrix += information;
-    total.vector += information * position;
+    total_information += information;
+    total_vector += information * position;
   }
   Estimate estimate;
-  estimate.covariance_en_m2 = total.matrix.inverse();
-  estimate.position_en_m = estimate.covariance_en_m2 * total.vector;
+  estimate.covariance_en_m2 = total_information.inverse();
+  estimate.position_en_m = estimate.covariance_en_m2 * total_vector;
   // Symmetric by construction up to rounding; meant to be made exactly so for
   // consumers. Eigen evaluates `m = 0.5 * (m + m.transpose())` in place, column
   // by column, so the (0, 1) element is averaged with the (1, 0) one already
@@ -108,23 +99,44 @@ Estimate FuseReports(const std::vector<FireObservation>& reports, const FireFusi
   return estimate;
 }
 
-// Recomputes every derived field of `track` from its reports.
-void Recompute(FireTrack& track, const FireFusionConfig& config) {
-  const Estimate estimate = FuseReports(track.reports, config);
+// Recomputes a track's position, covariance and vehicles from its evidence.
+void UpdateEstimate(FireTrack& track, const FireFusionConfig& config) {
+  const Estimate estimate = FuseEvidence(track.evidence, config);
   track.position_en_m = estimate.position_en_m;
   track.covariance_en_m2 = estimate.covariance_en_m2;
-  track.report_count = static_cast<std::int32_t>(track.reports.size());
-  std::set<std::uint8_t> vehicles;
-  track.first_seen_s = track.reports.front().detection_time_s;
-  track.last_seen_s = track.reports.front().detection_time_s;
-  track.max_confidence = track.reports.front().confidence;
-  for (const FireObservation& report : track.reports) {
-    vehicles.insert(report.vehicle_id);
+  track.vehicle_ids.clear();
+  for (const VehicleEvidence& e : track.evidence) track.vehicle_ids.push_back(e.vehicle_id);
+}
+
+// Adds `report` to `track`: its vehicle's evidence, the counts and times, the
+// kept reports; then the estimate.
+void Absorb(FireTrack& track, const FireObservation& report, const FireFusionConfig& config) {
+  auto vehicle =
+      std::lower_bound(track.evidence.begin(), track.evidence.end(), report.vehicle_id,
+                       [](const VehicleEvidence& e, std::uint8_t id) { return e.vehicle_id < id; });
+  if (vehicle == track.evidence.end() || vehicle->vehicle_id != report.vehicle_id) {
+    VehicleEvidence first;  // zero sums
+    first.vehicle_id = report.vehicle_id;
+    vehicle = track.evidence.insert(vehicle, first);
+  }
+  VehicleEvidence& evidence = *vehicle;
+  const Eigen::Matrix2d information = IndependentCovariance(report, config).inverse();
+  evidence.information_en += information;
+  evidence.information_vector_en += information * report.position_en_m;
+  ++evidence.report_count;
+  if (track.report_count == 0) {
+    track.first_seen_s = report.detection_time_s;
+    track.last_seen_s = report.detection_time_s;
+    track.max_confidence = report.confidence;
+  } else {
     track.first_seen_s = std::min(track.first_seen_s, report.detection_time_s);
     track.last_seen_s = std::max(track.last_seen_s, report.detection_time_s);
     track.max_confidence = std::max(track.max_confidence, report.confidence);
   }
-  track.vehicle_ids.assign(vehicles.begin(), vehicles.end());
+  ++track.report_count;
+  track.reports.push_back(report);
+  if (track.reports.size() > kKeptReportsPerTrack) track.reports.erase(track.reports.begin());
+  UpdateEstimate(track, config);
 }
 
 // Two reports are independent views when two vehicles made them, or one
@@ -240,46 +252,127 @@ FireFusion::FireFusion(FireFusionConfig config) : config_(config) {
   config_.Validate();
 }
 
-FireFusion FireFusion::Restore(FireFusionConfig config, std::vector<FireTrack> tracks,
-                               std::int32_t next_track_id) {
-  FireFusion fusion(config);
-  if (next_track_id <= 0) {
-    throw std::invalid_argument("FireFusion::Restore: next_track_id must be positive, got " +
-                                std::to_string(next_track_id));
+namespace {
+
+// The checks of FireFusion::Restore on one track, before its estimate is
+// recomputed from its evidence.
+void CheckRestoredTrack(const FireTrack& track, std::int32_t next_track_id) {
+  if (track.track_id <= 0) ThrowRestore(track.track_id, "track_id must be positive");
+  if (track.track_id >= next_track_id) {
+    ThrowRestore(track.track_id,
+                 "track_id not below next_track_id " + std::to_string(next_track_id));
   }
+  if (!IsKnownStatus(track.status)) ThrowRestore(track.track_id, "unknown status");
+  if (track.evidence.empty()) ThrowRestore(track.track_id, "no evidence");
+  std::int64_t counted = 0;
+  for (std::size_t i = 0; i < track.evidence.size(); ++i) {
+    const VehicleEvidence& e = track.evidence[i];
+    const std::string vehicle = "evidence of vehicle " + std::to_string(e.vehicle_id);
+    if (e.vehicle_id == kServerId || e.vehicle_id == kBroadcastId) {
+      ThrowRestore(track.track_id, vehicle + ": not a vehicle ID");
+    }
+    if (i > 0 && e.vehicle_id <= track.evidence[i - 1].vehicle_id) {
+      ThrowRestore(track.track_id, vehicle + ": vehicles must ascend, once each");
+    }
+    if (e.report_count <= 0) {
+      ThrowRestore(track.track_id, vehicle + ": report_count must be positive");
+    }
+    if (!e.information_en.allFinite() || !e.information_vector_en.allFinite() ||
+        e.information_en.determinant() <= 0.0 || e.information_en.trace() <= 0.0) {
+      ThrowRestore(track.track_id, vehicle + ": information not finite and positive definite");
+    }
+    counted += e.report_count;
+  }
+  if (counted != track.report_count) {
+    ThrowRestore(track.track_id, "report_count " + std::to_string(track.report_count) +
+                                     " is not the evidence's " + std::to_string(counted));
+  }
+  if (track.reports.empty() || track.reports.size() > kKeptReportsPerTrack ||
+      track.reports.size() > static_cast<std::size_t>(track.report_count)) {
+    ThrowRestore(track.track_id, "keeps " + std::to_string(track.reports.size()) +
+                                     " reports: 1 to min(report_count, " +
+                                     std::to_string(kKeptReportsPerTrack) + ") expected");
+  }
+  if (!std::isfinite(track.first_seen_s) || !std::isfinite(track.last_seen_s) ||
+      !std::isfinite(track.max_confidence)) {
+    ThrowRestore(track.track_id, "first_seen_s, last_seen_s or max_confidence not finite");
+  }
+  for (const FireObservation& report : track.reports) {
+    const std::string which = "report " + std::to_string(report.report_id) + " of vehicle " +
+                              std::to_string(report.vehicle_id);
+    if (!IsValid(report)) ThrowRestore(track.track_id, "invalid " + which);
+    if (report.detection_time_s < track.first_seen_s ||
+        report.detection_time_s > track.last_seen_s) {
+      ThrowRestore(track.track_id, which + ": detected outside first_seen_s..last_seen_s");
+    }
+  }
+}
+
+}  // namespace
+
+FireFusion FireFusion::Restore(FireFusionConfig config, FireFusionState state) {
+  FireFusion fusion(config);
+  if (state.next_track_id <= 0) {
+    throw std::invalid_argument("FireFusion::Restore: next_track_id must be positive, got " +
+                                std::to_string(state.next_track_id));
+  }
+  std::vector<FireTrack>& tracks = state.tracks;
   std::sort(tracks.begin(), tracks.end(),
             [](const FireTrack& a, const FireTrack& b) { return a.track_id < b.track_id; });
   for (std::size_t i = 0; i < tracks.size(); ++i) {
     FireTrack& track = tracks[i];
-    if (track.track_id <= 0) ThrowRestore(track.track_id, "track_id must be positive");
-    if (i > 0 && tracks[i - 1].track_id == track.track_id)
+    if (i > 0 && tracks[i - 1].track_id == track.track_id) {
       ThrowRestore(track.track_id, "duplicate track_id");
-    if (track.track_id >= next_track_id) {
-      ThrowRestore(track.track_id,
-                   "track_id not below next_track_id " + std::to_string(next_track_id));
     }
-    if (!IsKnownStatus(track.status)) ThrowRestore(track.track_id, "unknown status");
-    if (track.reports.empty()) ThrowRestore(track.track_id, "no reports");
-    for (const FireObservation& report : track.reports) {
-      if (!IsValid(report)) {
-        ThrowRestore(track.track_id, "invalid report " + std::to_string(report.report_id) +
-                                         " of vehicle " + std::to_string(report.vehicle_id));
-      }
-      if (!fusion.seen_.emplace(ReportKey{report.vehicle_id, report.report_id}, track.track_id)
-               .second) {
-        ThrowRestore(track.track_id, "report " + std::to_string(report.report_id) + " of vehicle " +
-                                         std::to_string(report.vehicle_id) + " appears twice");
-      }
-    }
-    Recompute(track, fusion.config_);
+    CheckRestoredTrack(track, state.next_track_id);
+    UpdateEstimate(track, fusion.config_);
     if (track.status == FireTrackStatus::kTentative &&
         HasIndependentViews(track.reports, fusion.config_)) {
       track.status = FireTrackStatus::kConfirmed;
     }
   }
   fusion.tracks_ = std::move(tracks);
-  fusion.next_track_id_ = next_track_id;
+  fusion.next_track_id_ = state.next_track_id;
+  std::map<std::uint8_t, std::size_t> remembered;  // per vehicle
+  for (const SeenReport& seen : state.seen) {
+    const std::string which = "FireFusion::Restore: remembered report " +
+                              std::to_string(seen.report_id) + " of vehicle " +
+                              std::to_string(seen.vehicle_id);
+    if (fusion.Find(seen.track_id) == nullptr) {
+      throw std::invalid_argument(which + ": no track " + std::to_string(seen.track_id));
+    }
+    if (fusion.seen_.contains({seen.vehicle_id, seen.report_id})) {
+      throw std::invalid_argument(which + ": appears twice");
+    }
+    if (++remembered[seen.vehicle_id] > kRememberedReportsPerVehicle) {
+      throw std::invalid_argument(which + ": the vehicle has more than " +
+                                  std::to_string(kRememberedReportsPerVehicle));
+    }
+    fusion.Remember({seen.vehicle_id, seen.report_id}, seen.track_id);
+  }
   return fusion;
+}
+
+FireFusionState FireFusion::state() const {
+  FireFusionState state;
+  state.tracks = tracks_;
+  state.next_track_id = next_track_id_;
+  for (const auto& [vehicle, order] : seen_order_) {
+    for (const std::uint16_t report_id : order) {
+      state.seen.push_back({vehicle, report_id, seen_.at({vehicle, report_id})});
+    }
+  }
+  return state;
+}
+
+void FireFusion::Remember(const ReportKey& key, std::int32_t track_id) {
+  seen_.emplace(key, track_id);
+  std::deque<std::uint16_t>& order = seen_order_[key.first];
+  order.push_back(key.second);
+  if (order.size() > kRememberedReportsPerVehicle) {
+    seen_.erase({key.first, order.front()});
+    order.pop_front();
+  }
 }
 
 FireReportResult FireFusion::Add(const FireObservation& report) {
@@ -294,17 +387,15 @@ FireReportResult FireFusion::Add(const FireObservation& report) {
     FireTrack track;
     track.track_id = next_track_id_++;
     track.status = FireTrackStatus::kTentative;
-    track.reports.push_back(report);
-    Recompute(track, config_);
-    seen_.emplace(key, track.track_id);
+    Absorb(track, report, config_);
+    Remember(key, track.track_id);
     tracks_.push_back(std::move(track));
     return {FireReportOutcome::kNewTrack, tracks_.back().track_id};
   }
 
   FireTrack& track = tracks_[*index];
-  track.reports.push_back(report);
-  Recompute(track, config_);
-  seen_.emplace(key, track.track_id);
+  Absorb(track, report, config_);
+  Remember(key, track.track_id);
   switch (track.status) {
     case FireTrackStatus::kRejected:
       return {FireReportOutcome::kAbsorbed, track.track_id};

@@ -141,6 +141,114 @@ FireObservation ObservationFrom(const nlohmann::json& j) {
   return o;
 }
 
+// A 2x2 matrix in (north, east) order, all four elements: a track's evidence is
+// a sum of inverses, symmetric only to the last bit, and must come back exact.
+nlohmann::json NorthEastMatrixJson(const Eigen::Matrix2d& en) {
+  const Eigen::Matrix2d ne = common::SwapAxes(en);
+  return {ne(0, 0), ne(0, 1), ne(1, 0), ne(1, 1)};
+}
+
+Eigen::Matrix2d FromNorthEastMatrix(const nlohmann::json& four) {
+  if (!four.is_array() || four.size() != 4) throw std::runtime_error("a matrix needs 4 numbers");
+  Eigen::Matrix2d ne;
+  ne << four.at(0).get<double>(), four.at(1).get<double>(), four.at(2).get<double>(),
+      four.at(3).get<double>();
+  return common::SwapAxes(ne);
+}
+
+nlohmann::json TrackJson(const FireTrack& track) {
+  nlohmann::json evidence = nlohmann::json::array();
+  for (const VehicleEvidence& e : track.evidence) {
+    evidence.push_back({{"vehicle", e.vehicle_id},
+                        {"reports", e.report_count},
+                        {"information_ne", NorthEastMatrixJson(e.information_en)},
+                        {"information_vector_ne", NorthEastJson(e.information_vector_en)}});
+  }
+  nlohmann::json reports = nlohmann::json::array();
+  for (const FireObservation& o : track.reports) reports.push_back(ObservationJson(o));
+  nlohmann::json out;
+  out["track_id"] = track.track_id;
+  out["status"] = static_cast<int>(track.status);
+  out["report_count"] = track.report_count;
+  out["first_seen_s"] = track.first_seen_s;
+  out["last_seen_s"] = track.last_seen_s;
+  out["max_confidence"] = track.max_confidence;
+  out["evidence"] = std::move(evidence);
+  out["reports"] = std::move(reports);
+  return out;
+}
+
+// The saved fields of a track; FireFusion::Restore checks and completes it.
+FireTrack TrackFrom(const nlohmann::json& j) {
+  FireTrack track;
+  track.track_id = j.at("track_id").get<std::int32_t>();
+  track.status = static_cast<FireTrackStatus>(j.at("status").get<std::int8_t>());
+  track.report_count = j.at("report_count").get<std::int32_t>();
+  track.first_seen_s = j.at("first_seen_s").get<double>();
+  track.last_seen_s = j.at("last_seen_s").get<double>();
+  track.max_confidence = j.at("max_confidence").get<double>();
+  for (const nlohmann::json& e : j.at("evidence")) {
+    VehicleEvidence evidence;
+    evidence.vehicle_id = e.at("vehicle").get<std::uint8_t>();
+    evidence.report_count = e.at("reports").get<std::int32_t>();
+    evidence.information_en = FromNorthEastMatrix(e.at("information_ne"));
+    evidence.information_vector_en = FromNorthEast(e.at("information_vector_ne"));
+    track.evidence.push_back(evidence);
+  }
+  for (const nlohmann::json& o : j.at("reports")) track.reports.push_back(ObservationFrom(o));
+  return track;
+}
+
+nlohmann::json FusionJson(const FireFusionState& state) {
+  nlohmann::json tracks = nlohmann::json::array();
+  for (const FireTrack& track : state.tracks) tracks.push_back(TrackJson(track));
+  nlohmann::json seen = nlohmann::json::array();
+  for (const SeenReport& r : state.seen) seen.push_back({r.vehicle_id, r.report_id, r.track_id});
+  return {{"next_track_id", state.next_track_id},
+          {"tracks", std::move(tracks)},
+          {"seen", std::move(seen)}};
+}
+
+FireFusionState FusionFrom(const nlohmann::json& j) {
+  FireFusionState state;
+  state.next_track_id = j.at("next_track_id").get<std::int32_t>();
+  for (const nlohmann::json& track : j.at("tracks")) state.tracks.push_back(TrackFrom(track));
+  for (const nlohmann::json& r : j.at("seen")) {
+    if (!r.is_array() || r.size() != 3) {
+      throw std::runtime_error("a remembered report is [vehicle, report_id, track_id]");
+    }
+    state.seen.push_back(
+        {r.at(0).get<std::uint8_t>(), r.at(1).get<std::uint16_t>(), r.at(2).get<std::int32_t>()});
+  }
+  return state;
+}
+
+nlohmann::json ReportStatsJson(const ReportStats& stats) {
+  nlohmann::json bins = nlohmann::json::array();
+  for (const auto& [bin, count] : stats.latency_s.NonEmptyBins()) bins.push_back({bin, count});
+  return {{"fused", stats.fused},
+          {"latency_max_s", stats.latency_s.max_s()},
+          {"latency_bins", std::move(bins)}};
+}
+
+ReportStats ReportStatsFrom(const nlohmann::json& j) {
+  ReportStats stats;
+  stats.fused = j.at("fused").get<std::uint64_t>();
+  common::AgeHistogram::Bins bins;
+  for (const nlohmann::json& bin : j.at("latency_bins")) {
+    if (!bin.is_array() || bin.size() != 2) {
+      throw std::runtime_error("a latency bin is [index, count]");
+    }
+    bins.emplace_back(bin.at(0).get<std::size_t>(), bin.at(1).get<std::uint64_t>());
+  }
+  stats.latency_s = common::AgeHistogram::FromBins(bins, j.at("latency_max_s").get<double>());
+  if (stats.latency_s.count() != stats.fused) {
+    throw std::runtime_error("fused " + std::to_string(stats.fused) + " reports but " +
+                             std::to_string(stats.latency_s.count()) + " latencies");
+  }
+  return stats;
+}
+
 // The record kind of a command: its name (operator_command.hpp), but one kind for
 // both investigation orders (as journals have always had it).
 std::string CommandKind(OperatorCommand::Kind command) {
@@ -256,8 +364,13 @@ JournalEvent EventFrom(const std::string& kind, const nlohmann::json& data) {
                                 data.at("why").get<std::string>()};
   }
   if (kind == "compacted") {
-    return JournalCompacted{data.at("next_command_id").get<std::int32_t>(),
-                            data.at("entries_dropped").get<std::uint64_t>()};
+    JournalCompacted compacted;
+    compacted.next_command_id = data.at("next_command_id").get<std::int32_t>();
+    compacted.entries_dropped = data.at("entries_dropped").get<std::uint64_t>();
+    // Without them: compacted before snapshots (its reports stayed as entries).
+    if (data.contains("fusion")) compacted.fusion = FusionFrom(data.at("fusion"));
+    if (data.contains("reports")) compacted.reports = ReportStatsFrom(data.at("reports"));
+    return compacted;
   }
   if (kind == "recall") {
     return DroneRecalled{data.at("vehicle").get<std::uint8_t>(), data.at("why").get<std::string>()};
@@ -349,7 +462,13 @@ nlohmann::json JournalDataOf(const JournalEntry& entry) {
             return {{"vehicle", e.vehicle}, {"why", e.why}};
           },
           [](const JournalCompacted& e) -> nlohmann::json {
-            return {{"next_command_id", e.next_command_id}, {"entries_dropped", e.entries_dropped}};
+            nlohmann::json compacted = {{"next_command_id", e.next_command_id},
+                                        {"entries_dropped", e.entries_dropped}};
+            if (e.fusion) {
+              compacted["fusion"] = FusionJson(*e.fusion);
+              compacted["reports"] = ReportStatsJson(e.reports);
+            }
+            return compacted;
           },
           [](const SortieMoved& e) -> nlohmann::json {
             return {{"from", e.from}, {"taker", MissionsJson({e.taker}).front()}};

@@ -424,12 +424,12 @@ void Server::OnFireReport(const radio::FireReportReceived& received, double now_
                                                            common::kMillisPerSecond +
                                                        offset->second);
   const FireObservation observation = ObservationFromReport(received.report, frame_, detection_s);
-  report_receipts_.emplace(std::make_pair(received.vehicle, received.report.report_id), now_s);
   const FireReportResult result = fusion_.Add(observation);
   if (result.outcome == FireReportOutcome::kDuplicate ||
       result.outcome == FireReportOutcome::kInvalid) {
     return;
   }
+  report_stats_.Add(now_s, detection_s);
   Record(now_s, ReportFused{observation});
   AfterFusion(observation, result, now_s);
 }

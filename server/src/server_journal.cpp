@@ -106,12 +106,8 @@ void Server::Replay(const JournalEntry& entry) {
             for (DroneMission m : e.drones) mission_->Replace(std::move(m), /*send=*/false);
           },
           [&](const MissionStateChanged& e) { state_ = e.state; },
-          [&](const ReportFused& e) {
-            report_receipts_.emplace(
-                std::make_pair(e.observation.vehicle_id, e.observation.report_id), t_s);
-            fusion_.Add(e.observation);
-          },
-          [&](const TrackRejected& e) { fusion_.Reject(e.track_id); },
+          [&](const ReportFused&) { ReplayFusion(entry, fusion_, report_stats_); },
+          [&](const TrackRejected&) { ReplayFusion(entry, fusion_, report_stats_); },
           [&](const InvestigationOpened& e) { investigations_.Restore(InvestigationFrom(e, t_s)); },
           // Why a new track got no investigator: for the operator, nothing to rebuild.
           [](const InvestigationNotSent&) {},
@@ -128,11 +124,34 @@ void Server::Replay(const JournalEntry& entry) {
           [](const CommandRefused&) {},
           [&](const JournalCompacted& e) {
             if (e.next_command_id > 1) commands_.Reserve(e.next_command_id - 1);
+            ReplayFusion(entry, fusion_, report_stats_);
           }},
       entry.event);
 }
 
-std::vector<JournalEntry> CompactJournal(std::vector<JournalEntry> entries) {
+void ReportStats::Add(double received_s, double detected_s) {
+  ++fused;
+  latency_s.Add(received_s - detected_s);
+}
+
+void ReplayFusion(const JournalEntry& entry, FireFusion& fusion, ReportStats& reports) {
+  if (const auto* fused = std::get_if<ReportFused>(&entry.event)) {
+    fusion.Add(fused->observation);
+    reports.Add(entry.t_s, fused->observation.detection_time_s);
+  } else if (const auto* rejected = std::get_if<TrackRejected>(&entry.event)) {
+    fusion.Reject(rejected->track_id);
+  } else if (const auto* compacted = std::get_if<JournalCompacted>(&entry.event)) {
+    // A snapshot holds every report and rejection before it; one from before
+    // snapshots left them as entries, already replayed.
+    if (compacted->fusion) {
+      fusion = FireFusion::Restore(fusion.config(), *compacted->fusion);
+      reports = compacted->reports;
+    }
+  }
+}
+
+std::vector<JournalEntry> CompactJournal(std::vector<JournalEntry> entries,
+                                         const FireFusionConfig& fusion_config) {
   std::size_t latest = entries.size();  // the latest mission's entry
   std::size_t missions = 0;
   for (std::size_t i = 0; i < entries.size(); ++i) {
@@ -143,27 +162,27 @@ std::vector<JournalEntry> CompactJournal(std::vector<JournalEntry> entries) {
   if (missions < 2) return entries;
   std::vector<JournalEntry> out;
   JournalCompacted compacted;
+  FireFusion fusion(fusion_config);
   std::int32_t last_command_id = 0;
   for (std::size_t i = 0; i < latest; ++i) {
     JournalEntry& entry = entries[i];
+    ReplayFusion(entry, fusion, compacted.reports);
     if (const auto* command = std::get_if<CommandAccepted>(&entry.event)) {
       last_command_id = std::max(last_command_id, command->command_id);
     } else if (const auto* earlier = std::get_if<JournalCompacted>(&entry.event)) {
       last_command_id = std::max(last_command_id, earlier->next_command_id - 1);
       compacted.entries_dropped += earlier->entries_dropped;
     }
-    const bool outlives = std::holds_alternative<VehicleAdded>(entry.event) ||
-                          std::holds_alternative<ReportFused>(entry.event) ||
-                          std::holds_alternative<TrackRejected>(entry.event);
-    if (outlives) {
+    if (std::holds_alternative<VehicleAdded>(entry.event)) {
       out.push_back(std::move(entry));
     } else if (!std::holds_alternative<JournalCompacted>(entry.event)) {
       ++compacted.entries_dropped;
     }
   }
   compacted.next_command_id = last_command_id + 1;
+  compacted.fusion = fusion.state();
   const JournalEntry& first_kept = entries[latest];
-  out.push_back(JournalEntry{first_kept.t_s, first_kept.radio_seq, compacted});
+  out.push_back(JournalEntry{first_kept.t_s, first_kept.radio_seq, std::move(compacted)});
   for (std::size_t i = latest; i < entries.size(); ++i) out.push_back(std::move(entries[i]));
   return out;
 }

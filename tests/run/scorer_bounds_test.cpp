@@ -1,10 +1,8 @@
 // The scorer's stores that grow with time are bounded (issue 19's soak): the
-// telemetry ages go to a fixed-memory histogram whose percentiles agree with the
-// exact nearest-rank ones, and a vehicle's track is thinned when it fills.
+// telemetry ages go to a fixed-memory histogram (tests/common/age_histogram_test.cpp),
+// and a vehicle's track is thinned when it fills.
 #include <gtest/gtest.h>
 
-#include <cstdint>
-#include <random>
 #include <vector>
 
 #include "fireswarm/run/runner.hpp"
@@ -13,39 +11,6 @@
 
 namespace fireswarm::run::internal {
 namespace {
-
-TEST(AgeHistogram, PercentilesAreTheExactOnesWithinABin) {
-  std::mt19937_64 rng(7);
-  std::exponential_distribution<double> ages(1.0 / 0.6);  // mean 0.6 s, a tail to seconds
-  AgeHistogram histogram;
-  std::vector<double> exact;
-  for (int i = 0; i < 100'000; ++i) {
-    const double age = ages(rng);
-    histogram.Add(age);
-    exact.push_back(age);
-  }
-  for (const double p : {0.01, 0.5, 0.9, 0.99, 0.999}) {
-    const double want = Percentile(exact, p);
-    const double got = histogram.Percentile(p);
-    EXPECT_GE(got, want) << "p" << p;  // the bin's upper edge
-    EXPECT_LE(got, want + 0.0101) << "p" << p;
-  }
-  EXPECT_EQ(histogram.count(), 100'000U);
-}
-
-TEST(AgeHistogram, CoarseBinsAboveTenSecondsAndTheLargestAgeCaps) {
-  AgeHistogram histogram;
-  EXPECT_EQ(histogram.Percentile(0.5), 0.0) << "empty";
-  histogram.Add(12.3);
-  histogram.Add(0.25);
-  histogram.Add(5'000.0);  // beyond the last bin
-  EXPECT_DOUBLE_EQ(histogram.Percentile(0.3), 0.26);
-  EXPECT_DOUBLE_EQ(histogram.Percentile(0.6), 13.0);
-  EXPECT_DOUBLE_EQ(histogram.Percentile(1.0), 5'000.0);
-  AgeHistogram one;
-  one.Add(0.123);
-  EXPECT_DOUBLE_EQ(one.Percentile(0.99), 0.123) << "never above the largest age";
-}
 
 // 100 minutes of a drone flying its rounds and parked between them: the report's
 // track stays within kMaxTrackPoints (every 5 s would be 1,200 points) and still

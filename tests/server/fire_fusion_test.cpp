@@ -1,7 +1,8 @@
 // FireFusion: association and gating, confirmation by independent views,
 // rejection, idempotent resends, the per-vehicle bias guard against
 // double-counting (with a Monte-Carlo consistency check against a naive
-// fusion), and restoring from a snapshot.
+// fusion), restoring from a snapshot, and a track's and the duplicate check's
+// fixed size however many reports come.
 #include "fireswarm/server/fire_fusion.hpp"
 
 #include <gtest/gtest.h>
@@ -11,6 +12,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <random>
 #include <stdexcept>
 #include <string>
@@ -371,18 +373,17 @@ TEST(FireFusion, RestoreFromSnapshotBehavesIdentically) {
   ASSERT_GE(original.tracks().size(), 2U);
   original.Reject(original.tracks()[1].track_id);
 
-  // The journal's view: the tracks and the next ID. Derived fields are not trusted.
-  std::vector<FireTrack> snapshot = original.tracks();
-  for (FireTrack& track : snapshot) {
+  // The journal's view. Derived fields are not trusted.
+  FireFusionState snapshot = original.state();
+  for (FireTrack& track : snapshot.tracks) {
     track.position_en_m.setZero();
     track.covariance_en_m2.setZero();
-    track.report_count = 0;
     track.vehicle_ids.clear();
   }
-  std::reverse(snapshot.begin(), snapshot.end());  // order does not matter either
-  FireFusion restored = FireFusion::Restore(original.config(), snapshot, original.next_track_id());
+  std::reverse(snapshot.tracks.begin(), snapshot.tracks.end());  // order does not matter either
+  FireFusion restored = FireFusion::Restore(original.config(), snapshot);
   EXPECT_EQ(restored.tracks(), original.tracks());
-  EXPECT_EQ(restored.next_track_id(), original.next_track_id());
+  EXPECT_EQ(restored.state(), original.state());
 
   // Resends of old reports plus new ones: the same results and the same tracks.
   std::vector<FireObservation> next = ReportStream(2U, 100, 30, 200.0);
@@ -395,39 +396,116 @@ TEST(FireFusion, RestoreFromSnapshotBehavesIdentically) {
     if (result.outcome == FireReportOutcome::kDuplicate) ++duplicates;
   }
   EXPECT_EQ(duplicates, 4);
-  EXPECT_EQ(restored.tracks(), original.tracks());
-  EXPECT_EQ(restored.next_track_id(), original.next_track_id());
+  EXPECT_EQ(restored.state(), original.state());
   EXPECT_EQ(original.tracks()[1].status, FireTrackStatus::kRejected);
 }
 
+// A fire reported for days: the track keeps its latest kKeptReportsPerTrack
+// reports, and its estimate is that of every report: three vehicles' 200 each
+// shrink the independent part 200-fold, which 64 reports could not.
+TEST(FireFusion, ATrackKeepsItsLatestReportsAndFusesThemAll) {
+  FireFusion fusion;
+  constexpr int kPerVehicle = 200;
+  for (int i = 0; i < kPerVehicle; ++i) {
+    for (int vehicle = 1; vehicle <= 3; ++vehicle) {
+      fusion.Add(Report(vehicle, i, 10.0 * i + vehicle, 0.0, 0.0));
+    }
+  }
+  ASSERT_EQ(fusion.tracks().size(), 1U);
+  const FireTrack& track = fusion.tracks().front();
+  EXPECT_EQ(track.report_count, 3 * kPerVehicle);
+  ASSERT_EQ(track.reports.size(), kKeptReportsPerTrack);
+  EXPECT_EQ(track.reports.back().report_id, kPerVehicle - 1);
+  EXPECT_EQ(track.reports.back().vehicle_id, 3);
+  EXPECT_DOUBLE_EQ(track.first_seen_s, 1.0);
+  EXPECT_DOUBLE_EQ(track.last_seen_s, 10.0 * (kPerVehicle - 1) + 3);
+  ASSERT_EQ(track.evidence.size(), 3U);
+  for (const VehicleEvidence& e : track.evidence) EXPECT_EQ(e.report_count, kPerVehicle);
+  // Per axis: each vehicle (N / n + B), three of them fused as independent.
+  const FireFusionConfig& config = fusion.config();
+  const double bias_m2 = config.vehicle_bias_sigma_m * config.vehicle_bias_sigma_m;
+  const double independent_m2 = kReportSigmaM * kReportSigmaM - bias_m2;
+  const double want_m2 = (independent_m2 / kPerVehicle + bias_m2) / 3.0;
+  EXPECT_NEAR(track.covariance_en_m2(0, 0), want_m2, kTightM);
+  EXPECT_NEAR(track.covariance_en_m2(1, 1), want_m2, kTightM);
+  EXPECT_NEAR(track.covariance_en_m2(0, 1), 0.0, kTightM);
+}
+
+// The duplicate check remembers each vehicle's latest kRememberedReportsPerVehicle
+// report IDs: a resend of one of them is dropped, and a vehicle's 16-bit report
+// IDs wrapping after 65,536 reports start new reports, not resends (a server
+// that remembered every ID dropped all of them).
+TEST(FireFusion, TheDuplicateCheckRemembersTheLatestIdsSoWrappedIdsAreNewReports) {
+  FireFusion fusion;
+  constexpr int kReports = 70'000;
+  int fused = 0;
+  for (int i = 0; i < kReports; ++i) {
+    const FireReportResult result = fusion.Add(Report(1, i % 65'536, i, 0.0, 0.0));
+    if (result.outcome != FireReportOutcome::kDuplicate) ++fused;
+  }
+  EXPECT_EQ(fused, kReports);
+  EXPECT_EQ(fusion.tracks().front().report_count, kReports);
+  EXPECT_EQ(fusion.Add(Report(1, (kReports - 1) % 65'536, 0.0, 0.0, 0.0)).outcome,
+            FireReportOutcome::kDuplicate);
+  EXPECT_EQ(fusion.Add(Report(1, (kReports - 4'096) % 65'536, 0.0, 0.0, 0.0)).outcome,
+            FireReportOutcome::kDuplicate);
+  EXPECT_NE(fusion.Add(Report(1, (kReports - 4'097) % 65'536, 0.0, 0.0, 0.0)).outcome,
+            FireReportOutcome::kDuplicate)
+      << "forgotten: fused as a new report";
+  EXPECT_EQ(fusion.state().seen.size(), kRememberedReportsPerVehicle);
+}
+
+// Each refusal names what is wrong.
 TEST(FireFusion, RestoreRefusesInconsistentSnapshots) {
   FireFusion fusion;
   fusion.Add(Report(1, 1, 0.0, 0.0, 0.0));
   fusion.Add(Report(1, 2, 0.0, 100.0, 0.0));
-  const std::vector<FireTrack> good = fusion.tracks();
-  EXPECT_NO_THROW(FireFusion::Restore({}, good, 3));
-  EXPECT_NO_THROW(FireFusion::Restore({}, {}, 1));
+  fusion.Add(Report(2, 1, 1.0, 100.0, 0.0));
+  const FireFusionState good = fusion.state();
+  EXPECT_NO_THROW(FireFusion::Restore({}, good));
+  EXPECT_NO_THROW(FireFusion::Restore({}, FireFusionState{}));
 
-  EXPECT_THROW(FireFusion::Restore({}, good, 2), std::invalid_argument);  // ID not below next
-  EXPECT_THROW(FireFusion::Restore({}, {}, 0), std::invalid_argument);
-  std::vector<FireTrack> same_id = good;
-  same_id[1].track_id = 1;
-  EXPECT_THROW(FireFusion::Restore({}, same_id, 3), std::invalid_argument);
-  std::vector<FireTrack> same_report = good;
-  same_report[1].reports.push_back(good[0].reports[0]);
-  EXPECT_THROW(FireFusion::Restore({}, same_report, 3), std::invalid_argument);
-  std::vector<FireTrack> empty = good;
-  empty[0].reports.clear();
-  EXPECT_THROW(FireFusion::Restore({}, empty, 3), std::invalid_argument);
+  const auto refusal = [](const FireFusionState& state) -> std::string {
+    try {
+      FireFusion::Restore({}, state);
+    } catch (const std::invalid_argument& e) {
+      return e.what();
+    }
+    return "accepted";
+  };
+  const auto refused = [&](const std::function<void(FireFusionState&)>& spoil,
+                           const std::string& why) {
+    FireFusionState state = good;
+    spoil(state);
+    const std::string message = refusal(state);
+    EXPECT_NE(message.find(why), std::string::npos) << message;
+  };
+  refused([](FireFusionState& s) { s.next_track_id = 2; }, "track 2: track_id not below");
+  refused([](FireFusionState& s) { s.next_track_id = 0; }, "next_track_id must be positive");
+  refused([](FireFusionState& s) { s.tracks[1].track_id = 1; }, "duplicate track_id");
+  refused([](FireFusionState& s) { s.tracks[0].status = static_cast<FireTrackStatus>(7); },
+          "unknown status");
+  refused([](FireFusionState& s) { s.tracks[0].evidence.clear(); }, "track 1: no evidence");
+  refused([](FireFusionState& s) { s.tracks[1].evidence[1].vehicle_id = 1; },
+          "vehicle 1: vehicles must ascend");
+  refused([](FireFusionState& s) { s.tracks[1].evidence[0].vehicle_id = 255; }, "not a vehicle ID");
+  refused([](FireFusionState& s) { s.tracks[0].evidence[0].information_en *= -1.0; },
+          "positive definite");
+  refused([](FireFusionState& s) { s.tracks[0].report_count = 2; }, "report_count 2");
+  refused([](FireFusionState& s) { s.tracks[0].reports.clear(); }, "keeps 0 reports");
+  refused([](FireFusionState& s) { s.tracks[0].reports[0].vehicle_id = 0; }, "invalid report");
+  refused([](FireFusionState& s) { s.tracks[1].last_seen_s = 0.5; }, "outside first_seen_s");
+  refused([](FireFusionState& s) { s.seen[0].track_id = 9; }, "no track 9");
+  refused([](FireFusionState& s) { s.seen.push_back(s.seen[0]); }, "appears twice");
 }
 
 TEST(FireFusion, RestoreConfirmsATentativeTrackItsReportsConfirm) {
   FireFusion fusion;
   fusion.Add(Report(1, 1, 0.0, 0.0, 0.0));
   fusion.Add(Report(2, 1, 1.0, 0.0, 0.0));
-  std::vector<FireTrack> snapshot = fusion.tracks();
-  snapshot[0].status = FireTrackStatus::kTentative;
-  const FireFusion restored = FireFusion::Restore({}, snapshot, 2);
+  FireFusionState snapshot = fusion.state();
+  snapshot.tracks[0].status = FireTrackStatus::kTentative;
+  const FireFusion restored = FireFusion::Restore({}, snapshot);
   EXPECT_EQ(restored.tracks()[0].status, FireTrackStatus::kConfirmed);
 }
 

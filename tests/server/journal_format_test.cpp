@@ -69,7 +69,7 @@ TEST(JournalFormat, EveryEventComesBackAsItWasWritten) {
       {10.0, 11, CommandAccepted{OperatorCommand::Kind::kHold, 2, {}, "signed", 7, "ann", 123, -5}},
       {11.0, 12,
        CommandRefused{CommandVerdict::kStale, 6, 2, "ann", 1, -2, "stale: utime 1 is outside"}},
-      {12.0, 13, JournalCompacted{42, 1'234}},
+      {12.0, 13, JournalCompacted{42, 1'234, std::nullopt, {}}},
   };
   for (const JournalEntry& entry : entries) {
     const JournalEntry back = RoundTrip(entry);
@@ -97,6 +97,45 @@ TEST(JournalFormat, EveryEventComesBackAsItWasWritten) {
   const auto& refused = std::get<CommandRefused>(refused_entry.event);
   EXPECT_EQ(refused.verdict, CommandVerdict::kStale);
   EXPECT_EQ(refused.why, "stale: utime 1 is outside");
+}
+
+// A compaction's snapshot: the tracks (their evidence to the last bit), the
+// duplicate check and the report counts come back as they were; a snapshot
+// whose counts disagree is refused naming the line.
+TEST(JournalFormat, ACompactionsSnapshotComesBackToTheBit) {
+  FireFusion fusion;
+  ReportStats stats;
+  for (int i = 0; i < 100; ++i) {
+    FireObservation o = Observation();
+    o.vehicle_id = static_cast<std::uint8_t>(1 + i % 3);
+    o.report_id = static_cast<std::uint16_t>(i);
+    o.detection_time_s = 10.0 * i;
+    o.position_en_m +=
+        Eigen::Vector2d(0.37 * (i % 7), -0.11 * (i % 5)) + (i % 2) * Eigen::Vector2d(500.0, 0.0);
+    o.covariance_en_m2 << 9.0 + 0.1 * i, 1.5, 1.5, 4.0 + 0.01 * i;
+    o.observer_en_m += Eigen::Vector2d(3.0 * i, 0.0);
+    fusion.Add(o);
+    stats.Add(o.detection_time_s + 0.013 * i, o.detection_time_s);
+  }
+  fusion.Reject(2);
+  JournalCompacted compacted{42, 1'234, fusion.state(), stats};
+  const JournalEntry back = RoundTrip({12.0, 13, compacted});
+  const auto& read = std::get<JournalCompacted>(back.event);
+  ASSERT_TRUE(read.fusion.has_value());
+  // Positions, covariances and vehicle lists are not written: recomputed.
+  EXPECT_EQ(read.fusion->seen, fusion.state().seen);
+  EXPECT_EQ(FireFusion::Restore({}, *read.fusion).state(), fusion.state());
+  EXPECT_EQ(read.reports, stats);
+
+  JournalRecord spoilt{7, 12.0, "compacted", JournalDataOf({12.0, 13, compacted})};
+  spoilt.data["reports"]["fused"] = 99;
+  try {
+    JournalEntryOf(spoilt);
+    FAIL() << "a snapshot with 99 reports fused and 100 latencies was read";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("journal line 7 (compacted)"), std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(JournalFormat, SortiesComeBackWithTheMissionAndEachPhase) {
@@ -256,7 +295,7 @@ TEST(JournalFormat, AJournalOfTheFormatBeforeVersionsStillRestores) {
   const common::LatLon at = frame.ToGeodetic({track.position_en_m.x(), track.position_en_m.y()});
   EXPECT_NEAR(at.lat_deg, 46.50002656298229, 1e-12);
   EXPECT_NEAR(at.lon_deg, 7.502246609823232, 1e-12);
-  EXPECT_EQ(server.report_receipts().size(), 4U);
+  EXPECT_EQ(server.report_stats().fused, 4U);
   // The investigation drone 1 was sent on, as it was ordered.
   ASSERT_EQ(server.investigations().size(), 1U);
   const Investigation& investigation = server.investigations()[0];

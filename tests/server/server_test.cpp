@@ -324,15 +324,20 @@ TEST(Server, FliesMissionAfterMissionOnceTheOneBeforeIsOver) {
   EXPECT_EQ(fleet.server.fusion().tracks().size(), 1u) << "the tracks outlive the mission";
 
   const std::vector<JournalEntry> journal = fleet.server.TakeJournalEntries();
-  const std::vector<JournalEntry> compacted = CompactJournal(journal);
+  const std::vector<JournalEntry> compacted = CompactJournal(journal, FireFusionConfig{});
   EXPECT_LT(compacted.size(), journal.size());
+  EXPECT_EQ(std::ranges::count_if(
+                compacted,
+                [](const JournalEntry& e) { return std::holds_alternative<ReportFused>(e.event); }),
+            0)
+      << "the first mission's report is in the snapshot";
   EXPECT_EQ(std::ranges::count_if(compacted,
                                   [](const JournalEntry& e) {
                                     return std::holds_alternative<MissionLoaded>(e.event);
                                   }),
             1)
       << "only the second mission";
-  EXPECT_EQ(CompactJournal(compacted).size(), compacted.size())
+  EXPECT_EQ(CompactJournal(compacted, FireFusionConfig{}).size(), compacted.size())
       << "compacting twice changes nothing";
   // Both the whole journal and the compacted one, through the file's record format.
   for (const std::vector<JournalEntry>* entries : {&journal, &compacted}) {
@@ -347,7 +352,8 @@ TEST(Server, FliesMissionAfterMissionOnceTheOneBeforeIsOver) {
     EXPECT_EQ(restored.NextMissionId(), fleet.server.NextMissionId());
     EXPECT_EQ(restored.mission()->mission_of(2).mission_id, second_id);
     EXPECT_EQ(restored.mission()->progress(2).phase, DronePhase::kFlying);
-    EXPECT_EQ(restored.fusion().tracks(), fleet.server.fusion().tracks());
+    EXPECT_EQ(restored.fusion().state(), fleet.server.fusion().state());
+    EXPECT_EQ(restored.report_stats(), fleet.server.report_stats());
     EXPECT_EQ(restored.next_command_id(), fleet.server.next_command_id())
         << "no command ID given twice";
   }

@@ -84,11 +84,12 @@ struct RadioOutcome {
   /// second while the vehicle flew) p50 and p99, s.
   std::map<int, std::pair<double, double>> telemetry_age_p50_p99_s;
   std::uint64_t retries = 0;
-  /// Detection on the vehicle to first receipt at the server, p50 and p99, s.
+  /// Detection on the vehicle to first receipt at the server, p50 and p99, s
+  /// (common::AgeHistogram's: to 10 ms below 10 s, to 1 s above).
   std::optional<double> report_latency_p50_s;
   std::optional<double> report_latency_p99_s;
   std::uint64_t reports_sent = 0;      ///< reports the vehicles queued
-  std::uint64_t reports_received = 0;  ///< distinct reports the server received
+  std::uint64_t reports_received = 0;  ///< distinct reports the server received and fused
   std::uint64_t reports_lost = 0;      ///< queued but never received by the run's end
 };
 

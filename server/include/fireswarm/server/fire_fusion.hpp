@@ -31,7 +31,9 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cstddef>
 #include <cstdint>
+#include <deque>
 #include <map>
 #include <optional>
 #include <string_view>
@@ -113,6 +115,33 @@ struct FireObservation {
 FireObservation ObservationFromReport(const radio::FireReport& report,
                                       const common::LocalFrame& frame, double detection_time_s);
 
+/// One vehicle's evidence on a track: the information-weighted sum of the
+/// independent parts of its reports (the error model above), in fixed memory
+/// however many reports it sent. Summed in arrival order, so a track restored
+/// from its evidence gets bit-identical numbers.
+struct VehicleEvidence {
+  std::uint8_t vehicle_id = 0;
+  std::int32_t report_count = 0;  ///< this vehicle's reports on the track
+  /// Sum of N^-1 over its reports (N: a report's independent covariance), 1/m^2.
+  Eigen::Matrix2d information_en = Eigen::Matrix2d::Zero();
+  /// Sum of N^-1 z over its reports (z: the report's position), 1/m.
+  Eigen::Vector2d information_vector_en = Eigen::Vector2d::Zero();
+
+  friend bool operator==(const VehicleEvidence&, const VehicleEvidence&) = default;
+};
+
+/// A track keeps its latest this many reports (for confirmation by separate
+/// passes and for the record); its estimate comes from every report it absorbed
+/// through its VehicleEvidence, so a fire reported for days keeps a fixed size.
+inline constexpr std::size_t kKeptReportsPerTrack = 64;
+
+/// The duplicate check remembers each vehicle's latest this many report IDs. A
+/// vehicle re-sends only reports it still holds, at most
+/// radio::VehicleEndpointConfig::max_queued_reports (256) of its latest, so an
+/// older ID can come again only as a new report after the 16-bit ID wrapped
+/// (65,536 reports on): then it is fused, not dropped as a resend.
+inline constexpr std::size_t kRememberedReportsPerVehicle = 4'096;
+
 /// One fire track: the plain state the journal persists and FireFusion::Restore
 /// takes back. Fields are compatible with lcmtypes/fire_track_t.lcm (times here
 /// are mission seconds; the LCM adapter converts to utime and lat/lon).
@@ -123,16 +152,36 @@ struct FireTrack {
   Eigen::Vector2d position_en_m = Eigen::Vector2d::Zero();
   /// Covariance of position_en_m, (east, north), m^2.
   Eigen::Matrix2d covariance_en_m2 = Eigen::Matrix2d::Zero();
-  std::int32_t report_count = 0;          ///< reports absorbed (== reports.size())
+  std::int32_t report_count = 0;          ///< reports absorbed, all of them
   std::vector<std::uint8_t> vehicle_ids;  ///< distinct reporting vehicles, ascending
   double first_seen_s = 0.0;              ///< earliest detection time, s
   double last_seen_s = 0.0;               ///< latest detection time, s
   double max_confidence = 0.0;            ///< highest report confidence, [0, 1]
-  /// Every report absorbed, in arrival order. The fusion recomputes all the
-  /// fields above from these, so a restored track behaves exactly as the original.
+  /// Per reporting vehicle, ascending by vehicle_id: position_en_m,
+  /// covariance_en_m2 and vehicle_ids are computed from these.
+  std::vector<VehicleEvidence> evidence;
+  /// The latest kKeptReportsPerTrack reports absorbed, in arrival order.
   std::vector<FireObservation> reports;
 
   friend bool operator==(const FireTrack&, const FireTrack&) = default;
+};
+
+/// A report the duplicate check remembers: (vehicle, report ID) and its track.
+struct SeenReport {
+  std::uint8_t vehicle_id = 0;
+  std::uint16_t report_id = 0;
+  std::int32_t track_id = 0;
+  friend bool operator==(const SeenReport&, const SeenReport&) = default;
+};
+
+/// Everything a FireFusion holds, as plain data: what a journal snapshot keeps
+/// (FireFusion::state, FireFusion::Restore).
+struct FireFusionState {
+  std::vector<FireTrack> tracks;  ///< ascending track_id
+  std::int32_t next_track_id = 1;
+  /// Per vehicle (ascending) its remembered reports, oldest first.
+  std::vector<SeenReport> seen;
+  friend bool operator==(const FireFusionState&, const FireFusionState&) = default;
 };
 
 /// What FireFusion::Add did with a report.
@@ -164,26 +213,35 @@ struct FireReportResult {
 /// FireFusionConfig: chi-square gate, widened to min_gate_m, capped at
 /// max_gate_m), ties to the lower track ID; in no gate, it starts a new track.
 /// A report in a rejected track's gate is absorbed there, so a hot rock once
-/// rejected is not reported again. Tracks are never merged or deleted.
+/// rejected is not reported again. Tracks are never merged or deleted. Memory:
+/// a track's size is fixed by its reporting vehicles (kKeptReportsPerTrack
+/// reports and one VehicleEvidence each), the duplicate check's by the vehicles
+/// (kRememberedReportsPerVehicle each); the track count grows only with fires.
 class FireFusion {
  public:
   /// An empty fusion; the first track gets ID 1. Throws as FireFusionConfig::Validate.
   explicit FireFusion(FireFusionConfig config = {});
 
-  /// The fusion as it was when `tracks` and `next_track_id` were saved. Only
-  /// track_id, status and reports are read: every other field is recomputed
-  /// from the reports (a saved kConfirmed or kRejected status is kept; a
-  /// tentative track the reports confirm becomes confirmed). Throws
-  /// std::invalid_argument as the constructor, and when track IDs are not
-  /// positive and unique, next_track_id is not above every track ID, a track
-  /// has no reports or an invalid one, or a (vehicle, report ID) appears twice.
-  static FireFusion Restore(FireFusionConfig config, std::vector<FireTrack> tracks,
-                            std::int32_t next_track_id);
+  /// The fusion as it was when `state` was taken (state()). Each track's
+  /// position, covariance and vehicle_ids are recomputed from its evidence; the
+  /// other fields are taken as saved (a tentative track its kept reports confirm
+  /// becomes confirmed). Throws std::invalid_argument as the constructor, and
+  /// naming the track or report when track IDs are not positive and unique,
+  /// next_track_id is not above every track ID, a status is unknown, a track
+  /// has no evidence, evidence of an invalid or repeated vehicle, counts that do
+  /// not add up to report_count, more than kKeptReportsPerTrack reports or an
+  /// invalid one, first/last seen times that are not finite or do not span
+  /// its reports; or a remembered report names no track, comes twice, or a
+  /// vehicle has more than kRememberedReportsPerVehicle.
+  static FireFusion Restore(FireFusionConfig config, FireFusionState state);
 
-  /// Fuses one report. Idempotent for resends (kDuplicate changes nothing):
-  /// a (vehicle, report ID) pair is taken to name one report for the whole
-  /// mission (the 16-bit ID would wrap only after 65,536 reports of one vehicle).
-  /// Reports may arrive out of detection-time order.
+  /// Everything this fusion holds; Restore(config(), state()) behaves the same.
+  FireFusionState state() const;
+
+  /// Fuses one report. Idempotent for resends (kDuplicate changes nothing): a
+  /// (vehicle, report ID) pair among the vehicle's latest
+  /// kRememberedReportsPerVehicle is a resend. Reports may arrive out of
+  /// detection-time order.
   FireReportResult Add(const FireObservation& report);
 
   /// Marks a track rejected (operator, or an investigation found nothing); it
@@ -204,11 +262,16 @@ class FireFusion {
 
   FireTrack* FindMutable(std::int32_t track_id);
   std::optional<std::size_t> Associate(const FireObservation& report) const;
+  // Remembers `key` as absorbed into `track_id`, forgetting the vehicle's oldest
+  // beyond kRememberedReportsPerVehicle.
+  void Remember(const ReportKey& key, std::int32_t track_id);
 
   FireFusionConfig config_;
   std::vector<FireTrack> tracks_;  // ascending track_id (creation order)
   std::int32_t next_track_id_ = 1;
-  std::map<ReportKey, std::int32_t> seen_;  // every report absorbed -> its track
+  std::map<ReportKey, std::int32_t> seen_;  // remembered reports -> their track
+  // Per vehicle, its remembered report IDs, oldest first (the keys of seen_).
+  std::map<std::uint8_t, std::deque<std::uint16_t>> seen_order_;
 };
 
 }  // namespace fireswarm::server

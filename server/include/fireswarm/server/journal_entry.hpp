@@ -11,6 +11,7 @@
 #include <variant>
 #include <vector>
 
+#include "fireswarm/common/age_histogram.hpp"
 #include "fireswarm/common/local_frame.hpp"
 #include "fireswarm/server/airspace.hpp"
 #include "fireswarm/server/command_auth.hpp"
@@ -130,11 +131,27 @@ struct DroneRecalled {
   std::string why;
 };
 
+/// What the server counts of the fire reports it fused, in fixed memory (the
+/// run report's reports received and report latency).
+struct ReportStats {
+  std::uint64_t fused = 0;  ///< reports fused: neither a resend nor invalid
+  /// Reception (mission time) minus detection time of each fused report, s.
+  common::AgeHistogram latency_s;
+  /// Counts a report fused at `received_s` that was detected at `detected_s`.
+  void Add(double received_s, double detected_s);
+  friend bool operator==(const ReportStats&, const ReportStats&) = default;
+};
+
 /// The journal was compacted (CompactJournal) here: the entries of the missions
 /// before were dropped, and what of them must outlive them is this.
 struct JournalCompacted {
   std::int32_t next_command_id = 1;  ///< command IDs below were given: none is given twice
   std::uint64_t entries_dropped = 0;
+  /// The fire tracks and the duplicate check as the dropped entries left them,
+  /// and the report counts. nullopt: a journal compacted before snapshots, whose
+  /// reports and rejections stayed as entries before this one.
+  std::optional<FireFusionState> fusion;
+  ReportStats reports;
 };
 
 using JournalEvent = std::variant<VehicleAdded, MissionLoaded, CommandAccepted, PhaseChanged,
@@ -153,12 +170,20 @@ struct JournalEntry {
 
 /// The journal of a server that flies mission after mission (a patrol), without
 /// what only the missions before the latest one needed: their uploads, phases,
-/// states, handovers, investigations and commands. Kept, in order: every vehicle,
-/// every fused report and rejected track (the fire tracks outlive the missions),
-/// one JournalCompacted entry (the next command ID, so none is given twice), then
-/// every entry from the latest mission's on. Restoring the result gives the same
-/// vehicles, tracks, mission, phases and state as restoring `entries`. Entries
-/// without a second mission are returned as they are.
-std::vector<JournalEntry> CompactJournal(std::vector<JournalEntry> entries);
+/// states, handovers, investigations and commands, and its fused reports and
+/// rejected tracks folded into one snapshot. Kept, in order: every vehicle, one
+/// JournalCompacted entry (the next command ID, so none is given twice; the fire
+/// tracks and duplicate check as those reports left them, fused with `fusion`;
+/// the report counts), then every entry from the latest mission's on. Restoring
+/// the result gives the same vehicles, tracks, mission, phases, state and report
+/// counts as restoring `entries`, and its size no longer grows with the missions
+/// flown. Entries without a second mission are returned as they are.
+std::vector<JournalEntry> CompactJournal(std::vector<JournalEntry> entries,
+                                         const FireFusionConfig& fusion);
+
+/// What a journal entry changes of the fire tracks and report counts: a fused
+/// report, a rejected track, a compaction's snapshot; other entries change
+/// nothing. Server::Restore and CompactJournal both replay through this.
+void ReplayFusion(const JournalEntry& entry, FireFusion& fusion, ReportStats& reports);
 
 }  // namespace fireswarm::server

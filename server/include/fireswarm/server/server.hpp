@@ -242,10 +242,9 @@ class Server {
   /// The ground the cameras have seen by telemetry (ServerConfig::area); null
   /// without an area. Not journaled: a restored server counts from zero again.
   const planner::CoverageGrid* coverage() const { return coverage_ ? &*coverage_ : nullptr; }
-  /// Mission time of the first receipt of each (vehicle, report ID), s.
-  const std::map<std::pair<std::uint8_t, std::uint16_t>, double>& report_receipts() const {
-    return report_receipts_;
-  }
+  /// The fire reports fused and their latencies (journaled: a restored server
+  /// has the counts of its whole life).
+  const ReportStats& report_stats() const { return report_stats_; }
   double mission_started_s() const { return mission_started_s_; }
   /// Every command accepted since this server started, in order (IDs ascending).
   const std::vector<CommandRecord>& commands() const { return commands_.records(); }
@@ -334,7 +333,7 @@ class Server {
   // Drones given up as lost whose lanes went to others -> ordered home since
   // they were heard again (server_handover.cpp).
   std::map<std::uint8_t, bool> handed_over_;
-  std::map<std::pair<std::uint8_t, std::uint16_t>, double> report_receipts_;
+  ReportStats report_stats_;
   std::map<std::uint8_t, double> clock_offset_s_;  // mission time - vehicle clock, per vehicle
   struct JournaledPhase {
     DronePhase phase = DronePhase::kUploading;
