@@ -222,12 +222,27 @@ radio_stats_t ToRadioStats(const Server& server, double now_s, std::int64_t utim
   return m;
 }
 
+bool LcmStringsFit(std::span<const std::uint8_t> bytes, std::size_t at, int count) {
+  for (int i = 0; i < count; ++i) {
+    if (bytes.size() < at || bytes.size() - at < 4) return false;
+    const std::uint32_t length = std::uint32_t{bytes[at]} << 24 |
+                                 std::uint32_t{bytes[at + 1]} << 16 |
+                                 std::uint32_t{bytes[at + 2]} << 8 | std::uint32_t{bytes[at + 3]};
+    at += 4;
+    // As unsigned, a negative length is over 2^31 and fails the second test.
+    if (length == 0 || length > bytes.size() - at) return false;
+    at += length;
+  }
+  return true;
+}
+
 std::optional<operator_command_t> DecodeOperatorCommand(std::span<const std::uint8_t> bytes) {
+  if (!LcmStringsFit(bytes, kOperatorCommandStringsAt, 2)) return std::nullopt;
   operator_command_t message;
   try {
     if (message.decode(bytes.data(), 0, static_cast<int>(bytes.size())) < 0) return std::nullopt;
   } catch (const std::exception&) {
-    return std::nullopt;  // a string length <= 0: lcm-gen's decode throws
+    return std::nullopt;  // none expected once the strings fit; never out of a callback
   }
   return message;
 }

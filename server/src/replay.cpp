@@ -37,7 +37,15 @@ std::optional<ReplayEvent> DecodeEvent(const lcm::LogEvent& event,
   if (channel == kFireTracksChannel) return Decode<fire_track_list_t>(event, path);
   if (channel == kMissionStatusChannel) return Decode<mission_status_t>(event, path);
   if (channel == kRadioStatsChannel) return Decode<radio_stats_t>(event, path);
-  if (channel == kPlanChannel) return Decode<plan_t>(event, path);
+  if (channel == kPlanChannel) {
+    const std::span<const std::uint8_t> bytes(static_cast<const std::uint8_t*>(event.data),
+                                              static_cast<std::size_t>(event.datalen));
+    if (!LcmStringsFit(bytes, kPlanStringsAt, 1)) {
+      Fail(path, "event " + std::to_string(event.eventnum) + " on " + event.channel +
+                     ": the geojson string's length does not fit the event (a corrupt event)");
+    }
+    return Decode<plan_t>(event, path);
+  }
   if (channel == kCommandStatusChannel) return Decode<command_status_t>(event, path);
   if (channel == kConflictChannel) return Decode<conflict_t>(event, path);
   return std::nullopt;

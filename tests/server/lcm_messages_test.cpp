@@ -2,7 +2,11 @@
 // operator commands in, command status and vehicle tasks out.
 #include <gtest/gtest.h>
 
+#include <cstddef>
+#include <cstdint>
+#include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "fireswarm/server/lcm_bridge.hpp"
@@ -50,6 +54,59 @@ TEST(LcmMessages, EveryOperatorCommandConstantIsTaken) {
   std::string why;
   EXPECT_FALSE(FromLcm(unknown, &why).has_value());
   EXPECT_EQ(why, "unknown command 12");
+}
+
+// Bytes lcm-gen's encode wrote for `message`.
+template <typename Message>
+std::vector<std::uint8_t> Encoded(const Message& message) {
+  std::vector<std::uint8_t> bytes(static_cast<std::size_t>(message.getEncodedSize()));
+  EXPECT_EQ(message.encode(bytes.data(), 0, static_cast<int>(bytes.size())),
+            static_cast<int>(bytes.size()));
+  return bytes;
+}
+
+// Writes `length` as the big-endian int32 at `at`.
+void SetLength(std::vector<std::uint8_t>& bytes, std::size_t at, std::uint32_t length) {
+  for (int i = 0; i < 4; ++i)
+    bytes[at + static_cast<std::size_t>(i)] = static_cast<std::uint8_t>(length >> (24 - 8 * i));
+}
+
+// A string length lcm-gen's decode must never see: 0 or negative threw, and
+// INT32_MIN overflowed `length - 1` (undefined: UBSan stopped fuzz/operator_command
+// on it; unchecked, a 2 GiB read past the packet). Each is refused before decoding,
+// in the operator's command and in a replayed plan.
+TEST(LcmMessages, AStringLengthThatDoesNotFitIsRefusedBeforeDecoding) {
+  operator_command_t command{};
+  command.command = operator_command_t::HOLD;
+  command.reason = "smoke";
+  command.operator_id = "ann";
+  const std::vector<std::uint8_t> good = Encoded(command);
+  ASSERT_TRUE(LcmStringsFit(good, kOperatorCommandStringsAt, 2)) << "the layout lcm-gen writes";
+  ASSERT_TRUE(DecodeOperatorCommand(good).has_value());
+  EXPECT_EQ(DecodeOperatorCommand(good)->operator_id, "ann");
+
+  const std::size_t reason_at = kOperatorCommandStringsAt;
+  const std::size_t operator_at = reason_at + 4 + command.reason.size() + 1;
+  for (const auto& [at, length] :
+       std::vector<std::pair<std::size_t, std::uint32_t>>{{reason_at, 0x80000000U},  // INT32_MIN
+                                                          {reason_at, 0xFFFFFFFFU},  // -1
+                                                          {reason_at, 0U},
+                                                          {reason_at, 1'000U},  // past the end
+                                                          {operator_at, 0x80000000U},
+                                                          {operator_at, 0U}}) {
+    std::vector<std::uint8_t> bad = good;
+    SetLength(bad, at, length);
+    EXPECT_FALSE(LcmStringsFit(bad, kOperatorCommandStringsAt, 2)) << at << " " << length;
+    EXPECT_FALSE(DecodeOperatorCommand(bad).has_value()) << at << " " << length;
+  }
+  EXPECT_FALSE(DecodeOperatorCommand(std::span(good).first(kOperatorCommandStringsAt + 2)));
+
+  plan_t plan{};
+  plan.geojson = "{}";
+  std::vector<std::uint8_t> plan_bytes = Encoded(plan);
+  EXPECT_TRUE(LcmStringsFit(plan_bytes, kPlanStringsAt, 1)) << "the layout lcm-gen writes";
+  SetLength(plan_bytes, kPlanStringsAt, 0x80000000U);
+  EXPECT_FALSE(LcmStringsFit(plan_bytes, kPlanStringsAt, 1));
 }
 
 TEST(LcmMessages, CommandStatusListsTheTargetsAndTheirStates) {

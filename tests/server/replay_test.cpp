@@ -142,6 +142,26 @@ TEST(ReplayLog, ErrorsNameTheFile) {
   const std::string why = LoadError(wrong);
   EXPECT_THAT(why, HasSubstr(wrong.string() + ": event 0 on FIRESWARM_VEHICLE_STATE"));
   EXPECT_THAT(why, HasSubstr("does not decode as vehicle_state_t"));
+
+  // A plan whose geojson length is INT32_MIN: refused, never given to the decode.
+  const fs::path bad_plan = TempPath("bad_plan.lcmlog");
+  {
+    plan_t plan{};
+    plan.geojson = "{}";
+    std::vector<std::uint8_t> bytes(static_cast<std::size_t>(plan.getEncodedSize()));
+    ASSERT_EQ(plan.encode(bytes.data(), 0, static_cast<int>(bytes.size())),
+              static_cast<int>(bytes.size()));
+    bytes[kPlanStringsAt] = 0x80;
+    bytes[kPlanStringsAt + 1] = bytes[kPlanStringsAt + 2] = bytes[kPlanStringsAt + 3] = 0;
+    lcm::LogFile log(bad_plan.string(), "w");
+    lcm::LogEvent event{};
+    event.channel = kPlanChannel;
+    event.datalen = static_cast<std::int32_t>(bytes.size());
+    event.data = bytes.data();
+    ASSERT_EQ(log.writeEvent(&event), 0);
+  }
+  EXPECT_THAT(LoadError(bad_plan),
+              HasSubstr("event 0 on FIRESWARM_PLAN: the geojson string's length"));
 }
 
 TEST(ReplayLog, ALogCutShortReplaysItsWholeEventsAndSaysSo) {

@@ -13,6 +13,7 @@
 // the lcm::LCM instance and the files (lcm_bridge.cpp).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
@@ -111,10 +112,25 @@ conflict_t ToConflict(const Conflict& conflict, std::int64_t utime, std::int64_t
 /// Lossless for the commands it takes (MAC input: command_auth.hpp).
 std::optional<OperatorCommand> FromLcm(const operator_command_t& message, std::string* why);
 /// operator_command_t bytes as they arrive on kOperatorCommandChannel, decoded;
-/// nullopt when they are not one. Never throws: LCM 1.3.1's generated decode throws
-/// std::length_error on a string length of 0 or less (found by fuzz/operator_command),
-/// and an exception must not escape an LCM callback.
+/// nullopt when they are not one. Never throws, and never hands a bad string
+/// length to the generated decode (LcmStringsFit).
 std::optional<operator_command_t> DecodeOperatorCommand(std::span<const std::uint8_t> bytes);
+
+/// Where the strings of an encoded message begin (its 8-byte hash included):
+/// operator_command_t's reason and operator_id follow its utime, command,
+/// target_vehicle, lat_deg, lon_deg and radius_m; plan_t's geojson its utime and
+/// mission_id. tests/server/lcm_bridge_test.cpp checks both against lcm-gen's encode.
+inline constexpr std::size_t kOperatorCommandStringsAt = 8 + 8 + 1 + 2 + 3 * 8;
+inline constexpr std::size_t kPlanStringsAt = 8 + 8 + 4;
+
+/// True when the `count` strings one after the other from byte `at` of `bytes`
+/// each have a length (a big-endian int32 counting its NUL) of 1 up to the bytes
+/// left. LCM 1.3.1's generated decode trusts that length: 0 or less throws
+/// std::length_error, and INT32_MIN overflows `length - 1` (undefined; in practice
+/// a 2 GiB read past the buffer: one packet on the LCM group could crash the
+/// server; found by fuzz/operator_command). Check outside bytes with it before
+/// decoding a message with strings.
+bool LcmStringsFit(std::span<const std::uint8_t> bytes, std::size_t at, int count);
 /// The message's credentials: operator_id, utime, nonce, mac.
 CommandCredentials CredentialsFromLcm(const operator_command_t& message);
 /// A signed command as an operator's tool publishes it.
