@@ -341,14 +341,15 @@ FireFusion FireFusion::Restore(FireFusionConfig config, FireFusionState state) {
     if (fusion.Find(seen.track_id) == nullptr) {
       throw std::invalid_argument(which + ": no track " + std::to_string(seen.track_id));
     }
-    if (fusion.seen_.contains({seen.vehicle_id, seen.report_id})) {
+    if (const auto vehicle = fusion.seen_.find(seen.vehicle_id);
+        vehicle != fusion.seen_.end() && vehicle->second.TrackOf(seen.report_id)) {
       throw std::invalid_argument(which + ": appears twice");
     }
     if (++remembered[seen.vehicle_id] > kRememberedReportsPerVehicle) {
       throw std::invalid_argument(which + ": the vehicle has more than " +
                                   std::to_string(kRememberedReportsPerVehicle));
     }
-    fusion.Remember({seen.vehicle_id, seen.report_id}, seen.track_id);
+    fusion.Remember(seen.vehicle_id, seen.report_id, seen.track_id);
   }
   return fusion;
 }
@@ -357,29 +358,41 @@ FireFusionState FireFusion::state() const {
   FireFusionState state;
   state.tracks = tracks_;
   state.next_track_id = next_track_id_;
-  for (const auto& [vehicle, order] : seen_order_) {
-    for (const std::uint16_t report_id : order) {
-      state.seen.push_back({vehicle, report_id, seen_.at({vehicle, report_id})});
+  for (const auto& [vehicle, remembered] : seen_) {
+    const std::size_t count = remembered.ids.size();
+    const std::size_t oldest = count < kRememberedReportsPerVehicle ? 0 : remembered.next;
+    for (std::size_t i = 0; i < count; ++i) {
+      const std::size_t slot = (oldest + i) % count;
+      state.seen.push_back({vehicle, remembered.ids[slot], remembered.tracks[slot]});
     }
   }
   return state;
 }
 
-void FireFusion::Remember(const ReportKey& key, std::int32_t track_id) {
-  seen_.emplace(key, track_id);
-  std::deque<std::uint16_t>& order = seen_order_[key.first];
-  order.push_back(key.second);
-  if (order.size() > kRememberedReportsPerVehicle) {
-    seen_.erase({key.first, order.front()});
-    order.pop_front();
+std::optional<std::int32_t> FireFusion::Remembered::TrackOf(std::uint16_t id) const {
+  const auto at = std::find(ids.begin(), ids.end(), id);
+  if (at == ids.end()) return std::nullopt;
+  return tracks[static_cast<std::size_t>(at - ids.begin())];
+}
+
+void FireFusion::Remember(std::uint8_t vehicle, std::uint16_t report_id, std::int32_t track_id) {
+  Remembered& r = seen_[vehicle];
+  if (r.ids.size() < kRememberedReportsPerVehicle) {
+    r.ids.push_back(report_id);
+    r.tracks.push_back(track_id);
+    return;
   }
+  r.ids[r.next] = report_id;  // forgets the oldest
+  r.tracks[r.next] = track_id;
+  r.next = (r.next + 1) % kRememberedReportsPerVehicle;
 }
 
 FireReportResult FireFusion::Add(const FireObservation& report) {
   if (!IsValid(report)) return {FireReportOutcome::kInvalid, 0};
-  const ReportKey key{report.vehicle_id, report.report_id};
-  if (const auto seen = seen_.find(key); seen != seen_.end()) {
-    return {FireReportOutcome::kDuplicate, seen->second};
+  if (const auto seen = seen_.find(report.vehicle_id); seen != seen_.end()) {
+    if (const std::optional<std::int32_t> track = seen->second.TrackOf(report.report_id)) {
+      return {FireReportOutcome::kDuplicate, *track};
+    }
   }
 
   const std::optional<std::size_t> index = Associate(report);
@@ -388,14 +401,14 @@ FireReportResult FireFusion::Add(const FireObservation& report) {
     track.track_id = next_track_id_++;
     track.status = FireTrackStatus::kTentative;
     Absorb(track, report, config_);
-    Remember(key, track.track_id);
+    Remember(report.vehicle_id, report.report_id, track.track_id);
     tracks_.push_back(std::move(track));
     return {FireReportOutcome::kNewTrack, tracks_.back().track_id};
   }
 
   FireTrack& track = tracks_[*index];
   Absorb(track, report, config_);
-  Remember(key, track.track_id);
+  Remember(report.vehicle_id, report.report_id, track.track_id);
   switch (track.status) {
     case FireTrackStatus::kRejected:
       return {FireReportOutcome::kAbsorbed, track.track_id};

@@ -447,9 +447,11 @@ TEST(FireFusion, TheDuplicateCheckRemembersTheLatestIdsSoWrappedIdsAreNewReports
   EXPECT_EQ(fusion.tracks().front().report_count, kReports);
   EXPECT_EQ(fusion.Add(Report(1, (kReports - 1) % 65'536, 0.0, 0.0, 0.0)).outcome,
             FireReportOutcome::kDuplicate);
-  EXPECT_EQ(fusion.Add(Report(1, (kReports - 4'096) % 65'536, 0.0, 0.0, 0.0)).outcome,
-            FireReportOutcome::kDuplicate);
-  EXPECT_NE(fusion.Add(Report(1, (kReports - 4'097) % 65'536, 0.0, 0.0, 0.0)).outcome,
+  constexpr int kRemembered = static_cast<int>(kRememberedReportsPerVehicle);
+  const FireReportResult oldest = fusion.Add(Report(1, (kReports - kRemembered) % 65'536, 0, 0, 0));
+  EXPECT_EQ(oldest.outcome, FireReportOutcome::kDuplicate);
+  EXPECT_EQ(oldest.track_id, 1);
+  EXPECT_NE(fusion.Add(Report(1, (kReports - kRemembered - 1) % 65'536, 0, 0, 0)).outcome,
             FireReportOutcome::kDuplicate)
       << "forgotten: fused as a new report";
   EXPECT_EQ(fusion.state().seen.size(), kRememberedReportsPerVehicle);

@@ -33,7 +33,6 @@
 #include <Eigen/Core>
 #include <cstddef>
 #include <cstdint>
-#include <deque>
 #include <map>
 #include <optional>
 #include <string_view>
@@ -135,12 +134,13 @@ struct VehicleEvidence {
 /// through its VehicleEvidence, so a fire reported for days keeps a fixed size.
 inline constexpr std::size_t kKeptReportsPerTrack = 64;
 
-/// The duplicate check remembers each vehicle's latest this many report IDs. A
-/// vehicle re-sends only reports it still holds, at most
+/// The duplicate check remembers each vehicle's latest this many report IDs (6
+/// bytes each: at most 6 KiB per vehicle). A vehicle
+/// re-sends only reports it still holds, at most
 /// radio::VehicleEndpointConfig::max_queued_reports (256) of its latest, so an
 /// older ID can come again only as a new report after the 16-bit ID wrapped
 /// (65,536 reports on): then it is fused, not dropped as a resend.
-inline constexpr std::size_t kRememberedReportsPerVehicle = 4'096;
+inline constexpr std::size_t kRememberedReportsPerVehicle = 1'024;
 
 /// One fire track: the plain state the journal persists and FireFusion::Restore
 /// takes back. Fields are compatible with lcmtypes/fire_track_t.lcm (times here
@@ -258,20 +258,27 @@ class FireFusion {
   const FireFusionConfig& config() const { return config_; }
 
  private:
-  using ReportKey = std::pair<std::uint8_t, std::uint16_t>;  // (vehicle, report ID)
+  // One vehicle's remembered report IDs: a ring of the latest
+  // kRememberedReportsPerVehicle with their tracks, searched from end to end
+  // (a scan of at most 2 KiB per report).
+  struct Remembered {
+    std::vector<std::uint16_t> ids;    // ring, oldest at `next` once full
+    std::vector<std::int32_t> tracks;  // the track of ids[i]
+    std::size_t next = 0;              // the slot the next ID goes to once full
+    // The track of `id` when it is remembered.
+    std::optional<std::int32_t> TrackOf(std::uint16_t id) const;
+  };
 
   FireTrack* FindMutable(std::int32_t track_id);
   std::optional<std::size_t> Associate(const FireObservation& report) const;
-  // Remembers `key` as absorbed into `track_id`, forgetting the vehicle's oldest
-  // beyond kRememberedReportsPerVehicle.
-  void Remember(const ReportKey& key, std::int32_t track_id);
+  // Remembers `vehicle`'s `report_id` as absorbed into `track_id`, forgetting the
+  // vehicle's oldest beyond kRememberedReportsPerVehicle.
+  void Remember(std::uint8_t vehicle, std::uint16_t report_id, std::int32_t track_id);
 
   FireFusionConfig config_;
   std::vector<FireTrack> tracks_;  // ascending track_id (creation order)
   std::int32_t next_track_id_ = 1;
-  std::map<ReportKey, std::int32_t> seen_;  // remembered reports -> their track
-  // Per vehicle, its remembered report IDs, oldest first (the keys of seen_).
-  std::map<std::uint8_t, std::deque<std::uint16_t>> seen_order_;
+  std::map<std::uint8_t, Remembered> seen_;  // per vehicle
 };
 
 }  // namespace fireswarm::server
