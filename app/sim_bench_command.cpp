@@ -75,10 +75,8 @@ Figures Fly(bench::BenchScenario& scenario, double seconds) {
   f.steps = steps;
   f.sim_seconds = sim.time_s();
   f.camera_frames = sim.camera_frames();
-  for (const sim2d::WorldEvent& event : world.events()) {
-    if (event.kind == sim2d::EventKind::kCollision) ++f.collisions;
-    if (event.kind == sim2d::EventKind::kNearMiss) ++f.near_misses;
-  }
+  f.collisions = world.events().count(sim2d::EventKind::kCollision);
+  f.near_misses = world.events().count(sim2d::EventKind::kNearMiss);
   f.min_separation_m = world.min_separation_m();
   f.burning_cells = sim.fire().burning_count();
   f.burned_area_m2 = sim.fire().BurnedAreaM2();

@@ -15,9 +15,17 @@ namespace fireswarm::run::internal {
 namespace {
 
 constexpr double kCoverageSampleS = 0.5;
-constexpr double kCoverageSeriesS = 10.0;
 constexpr double kSeparationSampleS = 0.05;
 constexpr double kTrackSampleS = 5.0;
+
+// A series that filled up: every other point goes (the first stays); the
+// caller doubles its interval.
+template <typename Point>
+void KeepEveryOther(std::vector<Point>& points) {
+  std::size_t kept = 0;
+  for (std::size_t k = 0; k < points.size(); k += 2) points[kept++] = points[k];
+  points.resize(kept);
+}
 
 bool Flying(const sim2d::VehicleTruth& truth) {
   return truth.phase == sim2d::FlightPhase::kFlying;
@@ -131,7 +139,11 @@ void Scorer::Observe(double t_s, const sim2d::Simulation& simulation,
   }
   if (t_s + kEps >= next_series_s_) {
     coverage_over_time_.emplace_back(t_s, coverage_.Fraction());
-    next_series_s_ += kCoverageSeriesS;
+    next_series_s_ += series_every_s_;
+    if (coverage_over_time_.size() >= kMaxSeriesPoints) {
+      KeepEveryOther(coverage_over_time_);
+      series_every_s_ *= 2.0;
+    }
   }
   if (t_s + kEps >= next_track_s_) {
     next_track_s_ += kTrackSampleS;
@@ -141,10 +153,7 @@ void Scorer::Observe(double t_s, const sim2d::Simulation& simulation,
       trace.track_skipped = 0;
       trace.track.push_back(ToLatLon(world.frame(), truth.position_m));
       if (trace.track.size() < kMaxTrackPoints) continue;
-      // Full: every other point goes (the first stays), and the interval doubles.
-      std::size_t kept = 0;
-      for (std::size_t k = 0; k < trace.track.size(); k += 2) trace.track[kept++] = trace.track[k];
-      trace.track.resize(kept);
+      KeepEveryOther(trace.track);
       trace.track_every *= 2;
     }
   }
@@ -160,7 +169,7 @@ void Scorer::Observe(double t_s, const sim2d::Simulation& simulation,
     }
   }
   ObserveSeparation(world);
-  ObserveCollisions(world);
+  ObserveEvents(world);
   for (const server::FireTrack& track : server.fusion().tracks()) {
     if (track.status != server::FireTrackStatus::kConfirmed) continue;
     auto it = confirmed_.find(track.track_id);
@@ -228,10 +237,16 @@ void Scorer::ObserveSeparation(const sim2d::World& world) {
   separation_seen_ = true;
 }
 
-void Scorer::ObserveCollisions(const sim2d::World& world) {
-  const std::vector<sim2d::WorldEvent>& events = world.events();
-  for (; events_seen_ < events.size(); ++events_seen_) {
-    const sim2d::WorldEvent& event = events[events_seen_];
+void Scorer::ObserveEvents(const sim2d::World& world) {
+  const sim2d::EventLog& events = world.events();
+  // Observed every step, so none is missed (the log keeps the latest 1,000).
+  for (events_seen_ = std::max(events_seen_, events.first()); events_seen_ < events.total();
+       ++events_seen_) {
+    const sim2d::WorldEvent& event = events.at(events_seen_);
+    if (event.kind == sim2d::EventKind::kBatterySwap) {
+      ++traces_[event.vehicle_a].battery_swaps;
+      continue;
+    }
     if (event.kind != sim2d::EventKind::kCollision) continue;
     Collision collision;
     collision.t_s = event.time_s;
@@ -391,11 +406,7 @@ Report Scorer::Finish(const sim2d::World& world, const server::Server& server,
     vehicle.sorties_flown = task.sorties_flown +
                             (before != final_state.sorties_flown_before.end() ? before->second : 0);
     vehicle.sortie = task.sortie;
-    for (const sim2d::WorldEvent& event : world.events()) {
-      if (event.kind == sim2d::EventKind::kBatterySwap && event.vehicle_a == id) {
-        ++vehicle.battery_swaps;
-      }
-    }
+    vehicle.battery_swaps = trace.battery_swaps;
     vehicle.track = trace.track;
     vehicle.track.push_back(ToLatLon(world.frame(), world.Truth(id).position_m));
     report.vehicles[id] = vehicle;

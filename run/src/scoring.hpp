@@ -57,6 +57,12 @@ std::optional<sim2d::Vec2> FireHotCentre(const sim2d::FireGrid& grid,
 /// of patrols keeps the whole day, coarser.
 inline constexpr std::size_t kMaxTrackPoints = 1'024;
 
+/// The coverage series takes a point this often, s ...
+inline constexpr double kCoverageSeriesS = 10.0;
+/// ... and keeps at most this many: when full, every other point goes and the
+/// interval doubles (past 2.8 hours).
+inline constexpr std::size_t kMaxSeriesPoints = 1'024;
+
 /// What the runner hands over at the end besides the world and the server.
 struct FinalState {
   double sim_seconds = 0.0;
@@ -96,10 +102,12 @@ class Scorer {
     int track_every = 1;                // samples per kept point (doubles when full)
     int track_skipped = 0;              // samples since the last kept point
     common::AgeHistogram telemetry_ages_s;
+    int battery_swaps = 0;
   };
 
   void ObserveSeparation(const sim2d::World& world);
-  void ObserveCollisions(const sim2d::World& world);
+  // Collisions and battery swaps, from the world's events since the last step.
+  void ObserveEvents(const sim2d::World& world);
   void ScoreFires(const server::Server& server, Report& report) const;
   void ListTracks(const server::Server& server, Report& report) const;
   void ScoreRadio(const server::Server& server, const FinalState& final_state,
@@ -121,7 +129,7 @@ class Scorer {
   void TakeFireCentres(const sim2d::FireGrid& grid, Confirmation& confirmation) const;
   std::map<std::int32_t, Confirmation> confirmed_;  // track ID -> when first seen confirmed
   std::vector<Collision> collisions_;
-  std::size_t events_seen_ = 0;
+  std::uint64_t events_seen_ = 0;  // the next world event's number
   double min_separation_m_ = 0.0;
   ClosestApproach closest_;
   bool separation_seen_ = false;
@@ -130,6 +138,7 @@ class Scorer {
   double next_coverage_s_ = 0.0;
   double last_observed_s_ = 0.0;  // the last Observe()'s time
   double next_series_s_ = 0.0;
+  double series_every_s_ = kCoverageSeriesS;  // doubled as the series fills
   double next_second_s_ = 0.0;
   double next_track_s_ = 0.0;
 };

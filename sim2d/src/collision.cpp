@@ -45,8 +45,7 @@ std::uintptr_t FixtureTag(std::size_t vehicle_index, bool near_miss_sensor) {
 
 CollisionTracker::CollisionTracker(const CollisionParams& params,
                                    const std::vector<VehicleTruth>& truths,
-                                   const std::vector<double>& half_heights_m,
-                                   std::vector<WorldEvent>& events)
+                                   const std::vector<double>& half_heights_m, EventLog& events)
     : params_(params),
       truths_(truths),
       half_heights_m_(half_heights_m),
@@ -123,7 +122,7 @@ void CollisionTracker::PreSolve(b2Contact* contact, const b2Manifold* /*old_mani
   if (event.vehicle_b < event.vehicle_a) std::swap(event.vehicle_a, event.vehicle_b);
   event.relative_speed_mps = speed_mps;
   event.min_separation_m = Separation3dM(truths_[a.index], truths_[b.index]);
-  events_.push_back(event);
+  events_.Add(event);
   if (speed_mps > params_.crash_relative_speed_mps) {
     crashes_.push_back(CollisionCrash{a.index, b.index, speed_mps});
   }
@@ -131,7 +130,7 @@ void CollisionTracker::PreSolve(b2Contact* contact, const b2Manifold* /*old_mani
 
 void CollisionTracker::CloseEncounter(NearPair& pair) {
   pair.in_encounter = false;
-  events_[pair.event_index].open = false;
+  events_.at(pair.event_index).open = false;
 }
 
 void CollisionTracker::UpdateNearMisses() {
@@ -146,7 +145,7 @@ void CollisionTracker::UpdateNearMisses() {
     const double distance_m = Separation3dM(a, b);
     min_separation_m_ = std::min(min_separation_m_, distance_m);
     if (pair.in_encounter) {
-      WorldEvent& event = events_[pair.event_index];
+      WorldEvent& event = events_.at(pair.event_index);
       event.min_separation_m = std::min(event.min_separation_m, distance_m);
       if (distance_m > kNearMissExitFactor * separation_m) CloseEncounter(pair);
       continue;
@@ -160,8 +159,7 @@ void CollisionTracker::UpdateNearMisses() {
     event.min_separation_m = distance_m;
     event.open = true;
     pair.in_encounter = true;
-    pair.event_index = events_.size();
-    events_.push_back(event);
+    pair.event_index = events_.Add(event);
   }
 }
 

@@ -44,7 +44,7 @@ class CollisionTracker final : public b2ContactListener {
   /// The tracker reads the vehicles' truths and band half-heights (indexed like
   /// the fixtures' tags) and appends to `events`; all must outlive it.
   CollisionTracker(const CollisionParams& params, const std::vector<VehicleTruth>& truths,
-                   const std::vector<double>& half_heights_m, std::vector<WorldEvent>& events);
+                   const std::vector<double>& half_heights_m, EventLog& events);
 
   /// The time stamped on events recorded from now on.
   void set_time_s(double time_s) { time_s_ = time_s; }
@@ -68,7 +68,7 @@ class CollisionTracker final : public b2ContactListener {
     std::uint32_t a = 0;
     std::uint32_t b = 0;
     bool in_encounter = false;
-    std::size_t event_index = 0;
+    std::uint64_t event_index = 0;  // its number in the EventLog
   };
   struct Pair {
     std::uint32_t a = 0;
@@ -83,7 +83,7 @@ class CollisionTracker final : public b2ContactListener {
   CollisionParams params_;
   const std::vector<VehicleTruth>& truths_;
   const std::vector<double>& half_heights_m_;
-  std::vector<WorldEvent>& events_;
+  EventLog& events_;
   double time_s_ = 0.0;
   std::vector<NearPair> near_pairs_;  // sensor discs overlapping now
   std::vector<Pair> colliding_;       // solid contacts enabled and touching now

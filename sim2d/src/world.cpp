@@ -159,6 +159,7 @@ std::uint64_t World::Impl::Hash() const {
     hasher.Add(vehicles[i].swap_due_s);
     vehicles[i].sensors.HashInto(hasher);
   }
+  hasher.Add(static_cast<double>(events.total()));
   for (const WorldEvent& e : events) {
     hasher.Add(static_cast<int>(e.kind));
     hasher.Add(e.time_s);
@@ -239,7 +240,20 @@ const SensorSample& World::Sensors(int id) const {
 std::span<const SensorSample> World::AllSensors() const {
   return impl_->samples;
 }
-const std::vector<WorldEvent>& World::events() const {
+std::uint64_t EventLog::Add(const WorldEvent& event) {
+  kept_.push_back(event);
+  ++counts_[static_cast<std::size_t>(event.kind)];
+  return total() - 1;
+}
+
+void EventLog::Trim() {
+  while (kept_.size() > kKeptWorldEvents && !kept_.front().open) {
+    kept_.pop_front();
+    ++first_;
+  }
+}
+
+const EventLog& World::events() const {
   return impl_->events;
 }
 double World::min_separation_m() const {

@@ -57,7 +57,7 @@ struct World::Impl {
   std::vector<SensorSample> samples;
   std::vector<VehicleRuntime> vehicles;
   std::unordered_map<int, std::size_t> index_of;
-  std::vector<WorldEvent> events;
+  EventLog events;
   CollisionTracker tracker;
   b2World physics;  // after the tracker: destroyed first, it points to it
   NoiseSource wind_noise;

@@ -39,6 +39,7 @@ double NextThrustN(const VehicleRuntime& vehicle, const VehicleTruth& truth) {
 }  // namespace
 
 void World::Impl::Step() {
+  events.Trim();  // the last step's events stay readable until this one
   const double start_s = time_s();
   UpdateWindAndFaults(start_s);
   for (int substep = 0; substep < config.substeps; ++substep) {
@@ -205,7 +206,7 @@ void World::Impl::Record(EventKind kind, std::size_t index, double speed_mps, in
   event.vehicle_a = truths[index].id;
   event.vehicle_b = other_id;
   event.relative_speed_mps = speed_mps;
-  events.push_back(event);
+  events.Add(event);
 }
 
 }  // namespace fireswarm::sim2d

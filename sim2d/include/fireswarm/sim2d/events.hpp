@@ -2,6 +2,11 @@
 // scoring: collisions, near misses, crashes, losses, take-offs and landings.
 #pragma once
 
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <deque>
+
 namespace fireswarm::sim2d {
 
 enum class EventKind {
@@ -14,6 +19,7 @@ enum class EventKind {
   kBatteryEmpty,  ///< the charge reached zero; the motors stop
   kBatterySwap,   ///< the ground crew put in a full pack (WorldConfig::battery_swap_s)
 };
+inline constexpr std::size_t kEventKinds = 8;
 
 /// One event. `vehicle_b` is 0 for events of one vehicle.
 struct WorldEvent {
@@ -28,6 +34,42 @@ struct WorldEvent {
   /// It keeps shrinking while `open` is true, i.e. while the encounter lasts.
   double min_separation_m = 0.0;
   bool open = false;  ///< kNearMiss: the vehicles are still inside the separation
+};
+
+/// The latest this many events are kept (and every open near miss, however
+/// old); every event is counted. A day of patrols records some ten thousand.
+inline constexpr std::size_t kKeptWorldEvents = 1'000;
+
+/// The world's events in order of occurrence, numbered from 0: every one
+/// counted, the latest kKeptWorldEvents kept, so a long run does not grow.
+/// Read new ones by number (first(), at()) to miss none between steps.
+class EventLog {
+ public:
+  /// Appends `event`; returns its number.
+  std::uint64_t Add(const WorldEvent& event);
+  /// Drops the oldest events beyond kKeptWorldEvents, stopping at an open one.
+  void Trim();
+
+  /// The event numbered `number`, first() <= number < total().
+  const WorldEvent& at(std::uint64_t number) const { return kept_[number - first_]; }
+  WorldEvent& at(std::uint64_t number) { return kept_[number - first_]; }
+  /// The number of the oldest event kept.
+  std::uint64_t first() const { return first_; }
+  /// Events so far, kept or not.
+  std::uint64_t total() const { return first_ + kept_.size(); }
+  /// Events of `kind` so far, kept or not.
+  std::uint64_t count(EventKind kind) const { return counts_[static_cast<std::size_t>(kind)]; }
+
+  /// The kept events, oldest first.
+  std::deque<WorldEvent>::const_iterator begin() const { return kept_.begin(); }
+  std::deque<WorldEvent>::const_iterator end() const { return kept_.end(); }
+  std::size_t size() const { return kept_.size(); }
+  bool empty() const { return kept_.empty(); }
+
+ private:
+  std::deque<WorldEvent> kept_;
+  std::uint64_t first_ = 0;
+  std::array<std::uint64_t, kEventKinds> counts_{};
 };
 
 }  // namespace fireswarm::sim2d

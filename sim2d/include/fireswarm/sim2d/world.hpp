@@ -77,9 +77,10 @@ class World {
   /// All sensor samples of the last step, aligned with Truths().
   std::span<const SensorSample> AllSensors() const;
 
-  /// Every event so far, in order of occurrence (near misses stay `open` while
-  /// the encounter lasts and their min_separation_m keeps shrinking).
-  const std::vector<WorldEvent>& events() const;
+  /// The events so far, in order of occurrence: every one counted, the latest
+  /// kKeptWorldEvents kept (near misses stay `open` while the encounter lasts
+  /// and their min_separation_m keeps shrinking).
+  const EventLog& events() const;
   /// The smallest 3D centre distance seen between two vehicles (neither lost, at
   /// least one flying) whose horizontal distance was within 1.1 times the near-miss
   /// separation; +infinity when no pair ever came that close.
