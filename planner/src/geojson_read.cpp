@@ -112,6 +112,14 @@ std::string NameOf(const Json& feature) {
   return {};
 }
 
+// True when `object`'s "type" member is the string `type`. Not Json::value:
+// that throws a type_error when the member is there but not a string (found by
+// fuzz/geojson_area: {"type": {...}} in a feature ended `plan` in std::terminate).
+bool HasType(const Json& object, std::string_view type) {
+  const auto member = object.find("type");
+  return member != object.end() && member->is_string() && member->get<std::string>() == type;
+}
+
 bool IsNoFly(const Json& feature) {
   const auto properties = feature.find("properties");
   if (properties == feature.end() || !properties->is_object()) return false;
@@ -121,7 +129,7 @@ bool IsNoFly(const Json& feature) {
 
 GeoFeature ReadFeature(const Json& feature, std::string_view source, std::size_t index) {
   Context context{source, FeatureLabel(index, feature.is_object() ? NameOf(feature) : "")};
-  if (!feature.is_object() || feature.value("type", "") != "Feature") {
+  if (!feature.is_object() || !HasType(feature, "Feature")) {
     context.Fail("is not a GeoJSON Feature object");
   }
   GeoFeature result;
@@ -224,7 +232,7 @@ GeoPoint ReadPoint(const Json& object, std::string_view source, std::size_t inde
   GeoPoint point;
   point.label = context.label;
   if (!bare) {
-    if (object.value("type", "") != "Feature") context.Fail("is not a GeoJSON Feature object");
+    if (!HasType(object, "Feature")) context.Fail("is not a GeoJSON Feature object");
     if (!object.contains("geometry") || !object["geometry"].is_object()) {
       context.Fail("has no \"geometry\" object");
     }

@@ -65,7 +65,10 @@ void CommandCenter::OnPlan(const plan_t& message) {
   plan_text_ = message.geojson;
   plan_changed_ = true;
   nlohmann::json plan = nlohmann::json::parse(message.geojson, nullptr, false);
-  if (plan.is_discarded() || !plan.is_object() || plan.value("type", "") != "FeatureCollection") {
+  // Not plan.value("type", ""): it throws when "type" is there but not a string.
+  const auto type = plan.is_object() ? plan.find("type") : plan.end();
+  if (plan.is_discarded() || !plan.is_object() || type == plan.end() ||
+      *type != "FeatureCollection") {
     // Kept off the map: the previous plan (if any) stays, the state says why.
     plan_info_["error"] = "plan of mission " + std::to_string(message.mission_id) +
                           ": not a GeoJSON FeatureCollection";

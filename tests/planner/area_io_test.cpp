@@ -263,6 +263,23 @@ TEST(LoadSearchAreaErrors, WrongGeometryType) {
             "area.geojson: no Polygon or MultiPolygon feature");
 }
 
+// A "type" that is there but not a string: named like any other non-Feature
+// (nlohmann's value() threw a type_error past the reader: found by
+// fuzz/geojson_area, whose corpus keeps the input).
+TEST(LoadSearchAreaErrors, ATypeThatIsNotAStringIsNotAFeature) {
+  EXPECT_EQ(ErrorOf(R"({"type":"FeatureCollection","features":[{"type":{"type":"Point"}}]})"),
+            "area.geojson: feature 0: is not a GeoJSON Feature object");
+  EXPECT_THAT(ErrorOf(R"({"type":"FeatureCollection","features":[{"type":7}]})"),
+              HasSubstr("feature 0: is not a GeoJSON Feature object"));
+  try {
+    ParseLaunchSites({R"({"type":"FeatureCollection","features":[{"type":[]}]})", "sites.geojson"});
+    FAIL() << "accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_THAT(e.what(), HasSubstr("sites.geojson: feature 0"));
+    EXPECT_THAT(e.what(), HasSubstr("is not a GeoJSON Feature object"));
+  }
+}
+
 TEST(LoadSearchAreaErrors, TooFewPositionsAndBadPositions) {
   const std::string two = "[[-74.6,46.2],[-74.5,46.2],[-74.6,46.2]]";
   EXPECT_EQ(ErrorOf(PolygonOf(two)),

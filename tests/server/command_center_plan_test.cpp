@@ -67,6 +67,11 @@ TEST(CommandCenterPlan, AMalformedPlanKeepsThePreviousOneAndSaysWhy) {
   const nlohmann::json info = center.State()["plan"];
   EXPECT_EQ(info["version"], 1);
   EXPECT_THAT(info["error"].get<std::string>(), HasSubstr("not a GeoJSON FeatureCollection"));
+  // A "type" that is not a string (a replayed log can hold anything): the same.
+  center.OnPlan(PlanMessage(R"({"type": {"type": "FeatureCollection"}})", 3));
+  EXPECT_EQ(center.Plan(), plan);
+  EXPECT_THAT(center.State()["plan"]["error"].get<std::string>(),
+              HasSubstr("not a GeoJSON FeatureCollection"));
 }
 
 TEST(CommandCenterPlan, APlanWithoutACameraIsShownButHasNoCoverage) {
