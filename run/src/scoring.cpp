@@ -97,13 +97,6 @@ std::optional<sim2d::Vec2> FireHotCentre(const sim2d::FireGrid& grid,
   return sum / static_cast<double>(hot);
 }
 
-double Percentile(std::vector<double> values, double p) {
-  std::sort(values.begin(), values.end());
-  const double rank = std::ceil(p * static_cast<double>(values.size()));
-  const auto index = static_cast<std::size_t>(std::max(rank, 1.0)) - 1;
-  return values[std::min(index, values.size() - 1)];
-}
-
 Scorer::Scorer(const Scenario& scenario, std::vector<FireSpec> fires)
     : scenario_(scenario),
       fires_(std::move(fires)),

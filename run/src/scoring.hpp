@@ -146,7 +146,4 @@ class Scorer {
 /// Each expectation the scenario states, checked against `report`.
 std::vector<ExpectOutcome> EvaluateExpectations(const Expectations& expect, const Report& report);
 
-/// Nearest-rank percentile `p` in [0, 1] of `values` (not empty).
-double Percentile(std::vector<double> values, double p);
-
 }  // namespace fireswarm::run::internal
