@@ -32,11 +32,13 @@ void OnTelemetry(SchedulerState& state, VehicleState& v, const Telemetry& teleme
   v.reports_pending = std::max(0, int{telemetry.pending_reports} - owed);
   // Served on time or early (within the window): advance on the period grid so the
   // rate holds. A vehicle late by more than a period does not catch up the backlog.
+  std::optional<Nanos> served_due;
   if (now >= v.next_telemetry_due - EarlyWindow(state.config, v)) {
+    served_due = v.next_telemetry_due;
     v.next_telemetry_due = std::max(v.next_telemetry_due + v.period, now);
   }
   MarkMet(state, v.id, {ReplyKind::kTelemetry, ReplyKind::kFireReport});
-  state.events.emplace_back(TelemetryReceived{v.id, now, telemetry});
+  state.events.emplace_back(TelemetryReceived{v.id, now, telemetry, served_due});
 }
 
 void OnFireReport(SchedulerState& state, VehicleState& v, const FireReport& report, Nanos now) {

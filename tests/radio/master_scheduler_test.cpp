@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <map>
 #include <ostream>
 #include <vector>
@@ -379,6 +380,37 @@ TEST(MasterScheduler, SilentVehicleIsReportedOnce) {
   for (const auto& e : server.TakeEvents()) silent += std::holds_alternative<VehicleSilent>(e);
   EXPECT_EQ(silent, 1);
   EXPECT_GE(server.stats().missed_replies, 2U);
+}
+
+// Each telemetry frame names the grid turn it served. Replies lost for less than a
+// period: the turn is served late and the grid goes on (1 s, 2 s, 3 s). Lost for
+// more than a period: the late frame serves the first turn, the skipped one is
+// never served and a new grid starts when the vehicle is heard.
+std::vector<Nanos> TurnsServed(Nanos replies_lost_until, Nanos run_until) {
+  SimNet net(ServerConfig(LinkMode::kSlots), 1);
+  net.server().AddVehicle(1, 1.0, Nanos{0});
+  net.drop_reply = [&](std::uint8_t, const Burst& burst) {
+    return burst.start < replies_lost_until;
+  };
+  net.RunUntil(run_until);
+  std::vector<Nanos> served;
+  for (const auto& e : net.EventsOf<TelemetryReceived>()) {
+    EXPECT_GE(e.received, replies_lost_until);
+    EXPECT_TRUE(e.served_due.has_value()) << "every frame here answers a telemetry turn";
+    if (e.served_due) served.push_back(*e.served_due);
+  }
+  return served;
+}
+
+TEST(MasterScheduler, TelemetryNamesTheTurnItServedAfterLostReplies) {
+  EXPECT_EQ(TurnsServed(milliseconds(400), milliseconds(3500)),
+            (std::vector<Nanos>{Nanos{0}, seconds(1), seconds(2), seconds(3)}));
+
+  const std::vector<Nanos> late = TurnsServed(milliseconds(1500), milliseconds(3500));
+  ASSERT_GE(late.size(), 2U);
+  EXPECT_EQ(late[0], Nanos{0});
+  EXPECT_GE(late[1], milliseconds(1500)) << "the turn due at 1 s is skipped, not made up";
+  EXPECT_EQ(std::count(late.begin(), late.end(), seconds(1)), 0);
 }
 
 TEST(MasterScheduler, TellsTheTelemetryRateItPollsAt) {

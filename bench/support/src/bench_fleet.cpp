@@ -122,7 +122,9 @@ void Record(const radio::SchedulerEvent& event, Nanos generation_end, Fleet& fle
             Metrics& metrics) {
   if (const auto* telemetry = std::get_if<radio::TelemetryReceived>(&event)) {
     BenchVehicle& v = *fleet.at(telemetry->vehicle - 1U);
-    if (telemetry->received <= generation_end) ++v.telemetry_received;
+    // A turn due in the window counts wherever its frame arrived: the last turns'
+    // resends after lost replies land after the window's end.
+    if (telemetry->served_due && *telemetry->served_due < generation_end) ++v.telemetry_received;
     v.latest_sample = std::chrono::milliseconds(telemetry->telemetry.time_ms);
   } else if (const auto* report = std::get_if<radio::FireReportReceived>(&event)) {
     const BenchVehicle& v = *fleet.at(report->vehicle - 1U);

@@ -35,7 +35,7 @@ struct BenchVehicle {
   radio::VehicleEndpoint endpoint;
   common::Nanos next_report = common::Nanos::max();  // next generation time
   std::vector<common::Nanos> report_generated;       // by report_id
-  std::uint64_t telemetry_received = 0;              // by the server, during the generation window
+  std::uint64_t telemetry_received = 0;  // telemetry turns due in the generation window, served
   std::optional<common::Nanos>
       latest_sample;           // sampling time of its latest telemetry at the server
   std::vector<double> ages_s;  // telemetry age at the server, every age sample

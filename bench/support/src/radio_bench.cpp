@@ -56,6 +56,7 @@ class Bench {
       : config_(config),
         generation_end_(common::FromSeconds(config.seconds)),
         hard_end_(generation_end_ + common::FromSeconds(config.drain_seconds)),
+        telemetry_period_(common::FromSeconds(1.0 / config.telemetry_hz)),
         server_(std::vector<radio::SchedulerConfig>(static_cast<std::size_t>(config.channels),
                                                     SchedulerConfigFor(config))),
         report_rng_(config.seed ^ kReportSeedSalt),
@@ -69,13 +70,12 @@ class Bench {
                               return StepServer(k, now, received);
                             }}));
     }
-    const Nanos period = common::FromSeconds(1.0 / config.telemetry_hz);
     for (int i = 0; i < config.vehicles; ++i) {
       const auto id = static_cast<std::uint8_t>(i + 1);
       fleet_.push_back(std::make_unique<BenchVehicle>(EndpointConfigFor(config, id)));
       // Staggered first turns spread the telemetry load over the period.
       const std::size_t channel =
-          server_.AddVehicle(id, config.telemetry_hz, period * i / config.vehicles);
+          server_.AddVehicle(id, config.telemetry_hz, telemetry_period_ * i / config.vehicles);
       loops_[channel]->AddVehicle(
           [&v = *fleet_.back()](Nanos now, std::span<const std::uint8_t> received) {
             return StepVehicle(v, now, received);
@@ -163,7 +163,8 @@ class Bench {
 
   bool Finished(Nanos t) const {
     if (t >= hard_end_) return true;
-    if (t < generation_end_) return false;
+    // One period more: the window's last telemetry turns may need resends.
+    if (t < generation_end_ + telemetry_period_) return false;
     return metrics_.reports_received == metrics_.reports_sent && metrics_.missions_pending == 0;
   }
 
@@ -230,6 +231,7 @@ class Bench {
   RadioBenchConfig config_;
   Nanos generation_end_;
   Nanos hard_end_;
+  Nanos telemetry_period_;
   radio::ChannelRouter server_;
   std::vector<std::unique_ptr<radio::ChannelLoop>> loops_;  // their master steps use server_
   std::mt19937_64 report_rng_;

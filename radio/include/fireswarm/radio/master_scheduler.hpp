@@ -78,6 +78,12 @@ struct TelemetryReceived {
   std::uint8_t vehicle = 0;
   Nanos received{0};
   Telemetry telemetry;
+  /// The telemetry turn this frame served: its due time on the vehicle's period grid
+  /// (it may arrive early, within the early window, or late, after lost replies).
+  /// Empty for a frame beyond the rate (a report turn's fallback before the window).
+  /// A vehicle late by more than a period starts a new grid: the turns it skipped
+  /// are never served, so counting served turns measures the rate delivered.
+  std::optional<Nanos> served_due;
 };
 
 /// A fire report arrived for the first time; resends of a (vehicle, report_id)
