@@ -10,6 +10,7 @@
 #include <optional>
 #include <sstream>
 #include <stdexcept>
+#include <system_error>
 
 #include "fireswarm/planner/area_io.hpp"
 #include "scenario_parts.hpp"
@@ -82,8 +83,15 @@ std::string PolygonFeature(const Field& ring, const std::string& name) {
 AreaSource ReadGeoJsonFile(const Field& path_field, const fs::path& base_dir) {
   const fs::path given(path_field.Text());
   const fs::path resolved = (given.is_absolute() ? given : base_dir / given).lexically_normal();
-  if (!fs::is_regular_file(resolved)) {
-    path_field.Fail("GeoJSON file not found: " + resolved.string() +
+  // The overload without an error code throws for a path the system cannot look up
+  // (a name too long, a loop of links): that is this key's error too.
+  std::error_code error;
+  if (!fs::is_regular_file(resolved, error)) {
+    const bool lookup_failed = error && error != std::errc::no_such_file_or_directory &&
+                               error != std::errc::not_a_directory;
+    path_field.Fail((lookup_failed ? "cannot look up the GeoJSON file (" + error.message() + "): "
+                                   : std::string("GeoJSON file not found: ")) +
+                    resolved.string() +
                     (given.is_absolute() ? "" : " (relative to the scenario file's directory)"));
   }
   std::ifstream in(resolved, std::ios::binary);

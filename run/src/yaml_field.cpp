@@ -75,11 +75,15 @@ YAML::Node LoadYaml(std::string_view text, const std::string& source_name) {
 }
 
 std::string ReadConfigFile(const std::filesystem::path& path, const std::string& what) {
-  if (std::filesystem::is_directory(path)) {
+  std::error_code error;  // the throwing overload throws for a name too long
+  if (std::filesystem::is_directory(path, error)) {
     throw ScenarioError(path.string() + ": is a directory, not a " + what);
   }
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw ScenarioError(path.string() + ": cannot open the " + what);
+  if (!in) {
+    throw ScenarioError(path.string() + ": cannot open the " + what +
+                        (error ? " (" + error.message() + ")" : ""));
+  }
   std::ostringstream text;
   text << in.rdbuf();
   if (in.bad()) throw ScenarioError(path.string() + ": cannot read the " + what);

@@ -337,6 +337,29 @@ TEST(LoadScenario, AMissingScenarioFileNamesIt) {
   }
 }
 
+// A name the system cannot look up (one component over 255 bytes): the error names
+// the file and says why, where std::filesystem's throwing calls threw their own
+// exception (found by the scenario fuzz target for a GeoJSON path).
+TEST(LoadScenario, ANameTooLongIsAScenarioErrorNamingIt) {
+  const fs::path too_long = TestDir() / (std::string(300, 'a') + ".yaml");
+  try {
+    LoadScenario(too_long);
+    FAIL() << "no error";
+  } catch (const ScenarioError& e) {
+    EXPECT_THAT(e.what(), StartsWith(too_long.string() + ": cannot open the scenario file"));
+    EXPECT_THAT(e.what(), HasSubstr("File name too long"));
+  }
+}
+
+TEST(LoadScenario, ADirectoryIsNotAScenarioFile) {
+  try {
+    LoadScenario(TestDir());
+    FAIL() << "no error";
+  } catch (const ScenarioError& e) {
+    EXPECT_THAT(e.what(), HasSubstr(": is a directory, not a scenario file"));
+  }
+}
+
 TEST(LoadScenario, ErrorsNameTheFileAsGiven) {
   const fs::path bad = TestDir() / "bad.yaml";
   WriteFile(bad, Minimal("radio: {loss: 2}\n"));
@@ -495,6 +518,11 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"KeyWithoutValue", Minimal("wind:\n"), "wind", "has no value"},
         BadInput{"MissingGeoJsonFile", kFleet + "area: {geojson: areas/nowhere.geojson}\n",
                  "area.geojson", "GeoJSON file not found: "},
+        BadInput{"GeoJsonNameTooLong",
+                 kFleet + "area: {geojson: " + std::string(300, 'a') + ".geojson}\n",
+                 "area.geojson", "cannot look up the GeoJSON file (File name too long): "},
+        BadInput{"NoFlyNameTooLong", Minimal("no_fly: " + std::string(300, 'z') + ".geojson\n"),
+                 "no_fly", "cannot look up the GeoJSON file (File name too long): "},
         BadInput{"MissingNoFlyFile", Minimal("no_fly: zones/none.geojson\n"), "no_fly",
                  "GeoJSON file not found: "},
         BadInput{"NoFlyWrongType", Minimal("no_fly: {geojson: x}\n"), "no_fly",
