@@ -247,9 +247,14 @@ GeoPoint ReadPoint(const Json& object, std::string_view source, std::size_t inde
       point.drones = drones.get<int>();
     }
   }
-  if (geometry->value("type", "") != "Point") {
-    context.Fail("geometry is " + geometry->value("type", std::string("missing")) +
-                 ", expected a Point (a launch site)");
+  // Not value("type", ""): it throws when "type" is there but not a string.
+  if (!HasType(*geometry, "Point")) {
+    const auto type = geometry->find("type");
+    const std::string found = type == geometry->end() ? std::string("missing")
+                              : type->is_string()
+                                  ? type->get<std::string>()
+                                  : "a \"type\" that is " + std::string(type->type_name());
+    context.Fail("geometry is " + found + ", expected a Point (a launch site)");
   }
   if (!geometry->contains("coordinates")) context.Fail("Point has no coordinates");
   point.position = ReadPosition((*geometry)["coordinates"], context, "the position");

@@ -280,6 +280,24 @@ TEST(LoadSearchAreaErrors, ATypeThatIsNotAStringIsNotAFeature) {
   }
 }
 
+// The launch-site reader's geometry "type" that is not a string (found by the
+// geojson_area fuzz target: nlohmann's value("type", "") threw type_error).
+TEST(ParseLaunchSitesErrors, AGeometryTypeThatIsNotAStringIsNamed) {
+  for (const std::string type : {"[[6.6, 46.5]]", "7", "{}", "null"}) {
+    try {
+      ParseLaunchSites({R"({"type":"FeatureCollection","features":[{"type":"Feature",)"
+                        R"("geometry":{"type":)" +
+                            type + R"(,"coordinates":[6.6,46.5]}}]})",
+                        "sites.geojson"});
+      FAIL() << "accepted a geometry type of " << type;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_THAT(e.what(), HasSubstr("sites.geojson: feature 0"));
+      EXPECT_THAT(e.what(), HasSubstr("geometry is a \"type\" that is "));
+      EXPECT_THAT(e.what(), HasSubstr("expected a Point (a launch site)"));
+    }
+  }
+}
+
 TEST(LoadSearchAreaErrors, TooFewPositionsAndBadPositions) {
   const std::string two = "[[-74.6,46.2],[-74.5,46.2],[-74.6,46.2]]";
   EXPECT_EQ(ErrorOf(PolygonOf(two)),
