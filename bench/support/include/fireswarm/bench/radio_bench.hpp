@@ -63,8 +63,7 @@ struct RadioBenchResult {
   double sim_seconds = 0.0;          ///< simulated time at the end, drain included
   double busy_fraction = 0.0;        ///< the busiest channel's: time it carried a transmission / seconds
   double payload_bytes_per_s = 0.0;  ///< data bytes of frames received by their addressee
-  double telemetry_hz_min =
-      0.0;  ///< per vehicle: telemetry turns due in [0, seconds) and served / seconds
+  double telemetry_hz_min = 0.0;     ///< per vehicle: turns due in [0, seconds), served / seconds
   double telemetry_hz_mean = 0.0;
   double telemetry_age_p50_s = 0.0;  ///< now - sampling time of the latest telemetry at
   double telemetry_age_p99_s = 0.0;  ///< the server, every vehicle every 100 ms
