@@ -38,14 +38,14 @@ if(FIRESWARM_SANITIZE)
   add_link_options(-fsanitize=address,undefined)
 endif()
 
-# fireswarm_light_under_sanitizers(<target>): in the sanitizer build, <target>'s
-# own code compiles at -O0 instead of -O1. For the test suites, the benchmarks,
+# fireswarm_light_under_sanitizers(<target>): in the sanitizer and fuzz builds,
+# <target>'s own code compiles at -O0 instead of -O1. For the test suites, the benchmarks,
 # the executable and the server's web adapter: their code drives the libraries,
 # which keep -O1 and do the work the tests wait for. Template-heavy code
 # (GoogleTest, Boost.Beast) compiles about twice as fast at -O0 under ASan
 # (server's web unit: 136 s instead of 281 s).
 function(fireswarm_light_under_sanitizers target)
-  if(FIRESWARM_SANITIZE)
+  if(FIRESWARM_SANITIZE OR FIRESWARM_FUZZ)
     target_compile_options(${target} PRIVATE -O0)
   endif()
 endfunction()

@@ -2,17 +2,37 @@
 # Builds the libFuzzer targets (fuzz/, clang++ with ASan + UBSan) in build-fuzz/ and
 # runs each on its seed corpus for a while; any finding fails the script (exit 1)
 # and leaves the input in build-fuzz/artifacts/.
-#   scripts/fuzz.sh                        -> every target, 25 s each (CI)
+#   scripts/fuzz.sh                        -> every target, 25 s each
 #   scripts/fuzz.sh 600 frame_parser       -> one target for 10 minutes
-# Installs Debian's clang when it is missing (as root, like install-deps.sh) and
-# fails loudly when it cannot: a fuzz step that silently skips would prove nothing.
+#   scripts/fuzz.sh --build                -> only build them (scripts/test.sh does,
+#                                             while the tests run, then runs them)
+#   --no-install                           -> skip scripts/install-deps.sh (test.sh
+#                                             has run it)
+# Fails loudly when clang's libFuzzer is missing: a fuzz step that silently skips
+# would prove nothing.
 # New inputs the fuzzer finds go to build-fuzz/corpus/<target>/, not to the tree;
 # copy a crash reproducer into fuzz/corpus/<target>/ so the replay ctest keeps it.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
+build_only=false
+install=true
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --build) build_only=true ;;
+    --no-install) install=false ;;
+    *) break ;;
+  esac
+  shift
+done
 seconds=${1:-25}
 [ $# -gt 0 ] && shift
+case "$seconds" in
+  '' | *[!0-9]*)
+    echo "fuzz: '$seconds' is not a number of seconds (scripts/fuzz.sh [--build] [--no-install] [SECONDS [TARGET...]])" >&2
+    exit 2
+    ;;
+esac
 targets=("$@")
 if [ ${#targets[@]} -eq 0 ]; then
   targets=(frame_parser payload geojson_area scenario journal operator_command web_command)
@@ -33,28 +53,24 @@ fuzzer_works() {
   return $status
 }
 
+# install-deps.sh installs Debian's clang with the rest.
+$install && bash scripts/install-deps.sh
 if ! fuzzer_works; then
-  if [ "$(id -u)" -ne 0 ]; then
-    echo "fuzz: clang++ with libFuzzer is missing; install Debian's clang (apt-get install clang) or run as root" >&2
-    exit 1
-  fi
-  echo "fuzz: installing clang"
-  export DEBIAN_FRONTEND=noninteractive
-  apt-get update -qq
-  apt-get install -y -qq --no-install-recommends clang libclang-rt-dev >/dev/null
-  if ! fuzzer_works; then
-    echo "fuzz: clang++ -fsanitize=fuzzer still cannot link a fuzz target" >&2
-    exit 1
-  fi
+  echo "fuzz: clang++ -fsanitize=fuzzer cannot link a fuzz target; install Debian's" \
+       "clang and libclang-rt-dev (scripts/install-deps.sh, as root)" >&2
+  exit 1
 fi
-
-bash scripts/install-deps.sh
 # No -Werror: the warnings are GCC's contract (scripts/build.sh); clang's are shown.
+# -g0: a finding's stack trace names functions, not lines (configure a build of
+# your own with -g1 to debug one); CI builds this on every run.
 CC=clang CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1" -DFIRESWARM_FUZZ=ON -DCMAKE_UNITY_BUILD=ON \
+  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g0" -DFIRESWARM_FUZZ=ON -DCMAKE_UNITY_BUILD=ON \
   -DFIRESWARM_BUILD_TESTS=OFF -DFIRESWARM_BUILD_BENCH=OFF >/dev/null
 jobs=$(( $(nproc) < 2 ? 1 : 2 ))
 cmake --build build-fuzz -j "$jobs" --target "${targets[@]/%/_fuzz}"
+if $build_only; then
+  exit 0
+fi
 
 export ASAN_OPTIONS=abort_on_error=1:detect_leaks=1
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1

@@ -16,6 +16,7 @@ PACKAGES=(
   libssl-dev libsqlite3-dev
   lld
   iproute2
+  clang libclang-rt-dev
 )
 
 missing=()
