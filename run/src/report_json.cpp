@@ -119,6 +119,8 @@ nlohmann::ordered_json ToJson(const Report& report) {
                                        {"vehicle_a", lost.vehicle_a},
                                        {"vehicle_b", lost.vehicle_b},
                                        {"reported_min_m", Number(lost.reported_min_m)},
+                                       {"predicted_m", Number(lost.predicted_m)},
+                                       {"time_to_closest_s", Number(lost.time_to_closest_s)},
                                        {"resolution", lost.resolution},
                                        {"mover", lost.mover}});
   }

@@ -634,6 +634,7 @@ RunResult RunScenario(const Scenario& scenario, const RunOptions& options) {
   separation.releases = traffic.counts().releases;
   for (const server::Conflict& c : traffic.lost()) {
     separation.lost.push_back({c.detected_s, c.vehicle_a, c.vehicle_b, c.observed_min_separation_m,
+                               c.predicted_separation_m, c.time_to_closest_s,
                                server::ToString(c.resolution), c.mover});
   }
   result.state_hash = run.simulation().StateHash();

@@ -17,7 +17,8 @@ using test::SmallArea;
 constexpr double kLimitM = 10.0;  // separation.separation_m's default
 // sim2d's near miss: closer than this two drones count as a near collision.
 constexpr double kNearMissM = 2.0;
-
+// The tactical watch's margin over the limit (docs/separation.md).
+constexpr double kPositionNoiseM = 3.0;
 
 Scenario Crowd(int count, const std::string& extra) {
   Scenario scenario = SmallArea(extra);
@@ -36,7 +37,11 @@ void ExpectKeptApart(const Report& report) {
   const SeparationOutcome& s = report.separation;
   EXPECT_LE(s.resolved + s.lost_separation, s.conflicts);
   EXPECT_EQ(s.lost.size(), s.lost_separation);
-  for (const SeparationOutcome::Lost& lost : s.lost) EXPECT_LT(lost.reported_min_m, kLimitM);
+  for (const SeparationOutcome::Lost& lost : s.lost) {
+    EXPECT_LT(lost.reported_min_m, kLimitM);
+    EXPECT_LT(lost.predicted_m, kLimitM + kPositionNoiseM);  // it was a conflict
+    EXPECT_GE(lost.time_to_closest_s, 0.0);
+  }
 }
 
 TEST(RunnerSeparation, TwentyFourDronesTakeOffSearchAndLandAtOneSiteApart) {
@@ -76,6 +81,13 @@ TEST(RunnerSeparation, OnOneAltitudeTheTacticalWatchAloneKeepsACrowdApart) {
   // The orders turn most conflicts into passes at a distance.
   EXPECT_GT(*resolved.min_separation_m, *unresolved.min_separation_m);
   EXPECT_LT(resolved.separation.lost_separation, unresolved.separation.lost_separation);
+  // Each lost one says what was predicted at detection, and how soon.
+  ASSERT_FALSE(unresolved.separation.lost.empty());
+  for (const SeparationOutcome::Lost& lost : unresolved.separation.lost) {
+    EXPECT_LT(lost.predicted_m, kLimitM + kPositionNoiseM);
+    EXPECT_GE(lost.time_to_closest_s, 0.0);
+    EXPECT_LE(lost.time_to_closest_s, 30.0);  // separation.horizon_s's default
+  }
 }
 
 TEST(RunnerSeparation, AnInvestigationAcrossTheOthersLanesKeepsItsDistance) {

@@ -115,12 +115,16 @@ struct SeparationOutcome {
   std::uint64_t releases = 0;         ///< level orders ended once their conflict closed
   std::optional<ClosestApproach> closest;  ///< where min_separation_m was sampled
   /// The conflicts that lost separation: when detected, the pair, the closest
-  /// they were reported, what was ordered ("climb", "descend", "level", "none").
+  /// they were reported, what was first predicted (how close, how soon: a late
+  /// detection shows as a short lead), what was ordered ("climb", "descend",
+  /// "level", "none").
   struct Lost {
     double detected_s = 0.0;
     int vehicle_a = 0;
     int vehicle_b = 0;
     double reported_min_m = 0.0;
+    double predicted_m = 0.0;        ///< the closest approach first predicted
+    double time_to_closest_s = 0.0;  ///< from detection to that approach
     std::string resolution;
     int mover = 0;
   };
