@@ -6,6 +6,7 @@
 
 #include <string>
 
+#include "fireswarm/run/report_json.hpp"
 #include "fireswarm/run/runner.hpp"
 #include "small_area.hpp"
 
@@ -88,6 +89,13 @@ TEST(RunnerSeparation, OnOneAltitudeTheTacticalWatchAloneKeepsACrowdApart) {
     EXPECT_GE(lost.time_to_closest_s, 0.0);
     EXPECT_LE(lost.time_to_closest_s, 30.0);  // separation.horizon_s's default
   }
+  // ... and so does the report's JSON.
+  const auto json_lost = ToJson(unresolved)["separation"]["lost"];
+  ASSERT_EQ(json_lost.size(), unresolved.separation.lost.size());
+  EXPECT_DOUBLE_EQ(json_lost[0]["predicted_m"].get<double>(),
+                   unresolved.separation.lost[0].predicted_m);
+  EXPECT_DOUBLE_EQ(json_lost[0]["time_to_closest_s"].get<double>(),
+                   unresolved.separation.lost[0].time_to_closest_s);
 }
 
 TEST(RunnerSeparation, AnInvestigationAcrossTheOthersLanesKeepsItsDistance) {
