@@ -28,6 +28,8 @@ namespace {
 constexpr double kLostDroneSpeedMps = 10.0;
 constexpr double kLostDroneDescentMps = 1.0;
 constexpr double kLostDroneSlackS = 60.0;
+// A drone taking off below this is over its stand, m.
+constexpr double kJustOffTheStandM = 5.0;
 // How many waypoints ahead a drone on its route is predicted along (take-off
 // clearances look about a minute ahead: at 10 m/s, lanes are longer than 50 m).
 constexpr std::size_t kRouteAheadWaypoints = 12;
@@ -255,9 +257,15 @@ void Server::OnEvent(const radio::SchedulerEvent& event, double now_s) {
     investigations_.OnPosition(telemetry->vehicle, where, now_s);
     MarkCoverage(telemetry->telemetry, where);
     const radio::FlightMode mode = telemetry->telemetry.mode;
-    if ((mode == radio::FlightMode::kIdle || mode == radio::FlightMode::kLanded) &&
-        (telemetry->telemetry.flags & radio::telemetry_flags::kGpsFix) != 0) {
+    const bool fix = (telemetry->telemetry.flags & radio::telemetry_flags::kGpsFix) != 0;
+    if ((mode == radio::FlightMode::kIdle || mode == radio::FlightMode::kLanded) && fix) {
       stand_en_m_[telemetry->vehicle] = where;
+    } else if (mode == radio::FlightMode::kTakeoff && fix &&
+               telemetry->telemetry.altitude_m < kJustOffTheStandM) {
+      // First heard just off the ground: a take-off climbs straight up from its
+      // stand (on a crowded channel a drone may be started before it is heard
+      // on the ground, and its way home ends there).
+      stand_en_m_.try_emplace(telemetry->vehicle, where);
     }
     clock_offset_s_[telemetry->vehicle] =
         now_s - static_cast<double>(telemetry->telemetry.time_ms) / common::kMillisPerSecond;
@@ -318,6 +326,19 @@ void Server::WatchTraffic(std::uint8_t vehicle, const radio::Telemetry& telemetr
       const double speed_mps = sortie[telemetry.waypoint_index].speed_mps;
       sample.route_speed_mps = speed_mps > 0.0 ? speed_mps : kLostDroneSpeedMps;
     }
+  }
+  // On its way home: straight to its stand at its return layer, where it stops
+  // and comes down (agents' return to launch). Straight on, it would be
+  // predicted flying on past its stand, and a drone crossing over the stand
+  // while it comes down there would be seen only as it stops.
+  const auto stand = stand_en_m_.find(vehicle);
+  if (telemetry.mode == radio::FlightMode::kReturnToLaunch && stand != stand_en_m_.end()) {
+    const double altitude_m = sample.intent_altitude_m.value_or(telemetry.altitude_m);
+    sample.route_m = {{stand->second.x(), stand->second.y(), altitude_m}};
+    const std::span<const radio::Waypoint> flown = SortieFlown(mission(), vehicle);
+    sample.route_speed_mps = !flown.empty() && flown.back().speed_mps > 0.0 ? flown.back().speed_mps
+                                                                            : kLostDroneSpeedMps;
+    sample.route_stops = true;
   }
   traffic_.Observe(vehicle, sample);
 }

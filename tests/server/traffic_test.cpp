@@ -510,6 +510,87 @@ TEST(TrafficControl, ATakeOffIsHeldForADroneWhoseRouteTurnsOverItsStand) {
   EXPECT_TRUE(watch.ClearToDepart(1, departure, 0.0));
 }
 
+// A drone on its route, as the server's telemetry handler reports it.
+TrafficSample OnRoute(const Eigen::Vector3d& position_m, const Eigen::Vector2d& velocity_mps,
+                      std::vector<Eigen::Vector3d> route_m, double speed_mps) {
+  TrafficSample sample;
+  sample.position_m = position_m;
+  sample.velocity_mps = {velocity_mps.x(), velocity_mps.y(), 0.0};
+  sample.route_m = std::move(route_m);
+  sample.route_speed_mps = speed_mps;
+  return sample;
+}
+
+TEST(TrafficControl, AConflictBehindATurnIsSeenBeforeTheTurn) {
+  // Drone 1 flies north at 90 m; 60 m on, its route turns east along a lane.
+  // Drone 2 flies that lane west toward it at 90 m, 300 m east of the turn.
+  // Straight on they never meet (drone 1 would go on north); along the route
+  // they meet about 20 s from now, after the turn.
+  SeparationConfig config;
+  TrafficControl watch(config);
+  watch.Observe(
+      1, OnRoute({0.0, -60.0, 90.0}, {0.0, 10.0}, {{0.0, 0.0, 90.0}, {600.0, 0.0, 90.0}}, 10.0));
+  watch.Observe(2, OnRoute({300.0, 0.0, 90.0}, {-10.0, 0.0}, {{-600.0, 0.0, 90.0}}, 10.0));
+  watch.Step(0.0);
+  ASSERT_EQ(watch.counts().conflicts, 1U);
+  const Conflict& conflict = watch.conflicts().front();
+  EXPECT_LT(conflict.predicted_separation_m, config.separation_m);
+  // Seen before drone 1 turns (6 s on at cruise, longer with the corner), with
+  // the time an order needs left over.
+  EXPECT_GT(conflict.time_to_closest_s, 12.0);
+  EXPECT_NE(conflict.resolution, Resolution::kNone);
+
+  // The same pair without drone 1's route (it flies no mission): straight on,
+  // no conflict.
+  TrafficControl straight(config);
+  straight.Observe(1, OnRoute({0.0, -60.0, 90.0}, {0.0, 10.0}, {}, 10.0));
+  straight.Observe(2, OnRoute({300.0, 0.0, 90.0}, {-10.0, 0.0}, {{-600.0, 0.0, 90.0}}, 10.0));
+  straight.Step(0.0);
+  EXPECT_EQ(straight.counts().conflicts, 0U);
+}
+
+TEST(TrafficControl, ALayerChangeAlongALegIsPredictedAsTheNavigatorFliesIt) {
+  // Drone 1 flies east at its transit layer (135 m) to its lane's start, 50 m
+  // on, and turns north onto the lane, which starts 8 m on, 45 m lower. The
+  // navigator goes on along the lane at whatever altitude it has reached, so
+  // drone 1 descends (2 m/s) for its lane's first 20 s. Drone 2 flies south at
+  // 135 m, 5 m east of the lane, and meets it about 12 s from now, then about
+  // 10 m under it. Were drone 1 at its lane's altitude from the lane's start
+  // on (its waypoint's), they would pass 45 m apart.
+  SeparationConfig config;
+  TrafficControl watch(config);
+  watch.Observe(1, OnRoute({-50.0, 0.0, 135.0}, {10.0, 0.0},
+                           {{0.0, 0.0, 135.0}, {0.0, 8.0, 90.0}, {0.0, 508.0, 90.0}}, 10.0));
+  watch.Observe(2, OnRoute({5.0, 150.0, 135.0}, {0.0, -10.0}, {{5.0, -600.0, 135.0}}, 10.0));
+  watch.Step(0.0);
+  ASSERT_EQ(watch.counts().conflicts, 1U);
+  EXPECT_GT(watch.conflicts().front().time_to_closest_s, 8.0);
+}
+
+TEST(TrafficControl, ADroneOnItsWayHomeIsPredictedToStopOverItsStand) {
+  // Drone 1 flies home east at its return layer (150 m) and stops over its
+  // stand, 100 m on, in about 12 s, to come down there. Drone 2 crosses over
+  // that stand northward at 150 m 25 s from now. Straight on, drone 1 would be
+  // 150 m past the stand by then.
+  SeparationConfig config;
+  TrafficControl watch(config);
+  TrafficSample home = OnRoute({-100.0, 0.0, 150.0}, {10.0, 0.0}, {{0.0, 0.0, 150.0}}, 10.0);
+  home.route_stops = true;
+  home.intent_altitude_m = 150.0;
+  watch.Observe(1, home);
+  watch.Observe(2, OnRoute({0.0, -250.0, 150.0}, {0.0, 10.0}, {{0.0, 600.0, 150.0}}, 10.0));
+  watch.Step(0.0);
+  ASSERT_EQ(watch.counts().conflicts, 1U);
+  EXPECT_GT(watch.conflicts().front().time_to_closest_s, 20.0);
+
+  TrafficControl straight(config);
+  home.route_m.clear();
+  straight.Observe(1, home);
+  straight.Observe(2, OnRoute({0.0, -250.0, 150.0}, {0.0, 10.0}, {{0.0, 600.0, 150.0}}, 10.0));
+  straight.Step(0.0);
+  EXPECT_EQ(straight.counts().conflicts, 0U);
+}
+
 TEST(SeparationConfig, RefusesBadValuesNamingTheField) {
   SeparationConfig config;
   config.separation_m = -1.0;

@@ -3,10 +3,11 @@
 //
 // Strategic (airspace.hpp) gives each drone altitude layers before it flies.
 // Tactical (TrafficControl, here) watches the fleet from telemetry: from each
-// drone's reported position and velocity it predicts every pair's closest
-// approach over `horizon_s`, and when that falls under `separation_m` it orders
-// one drone of the pair to another altitude (radio CommandType::kAvoid) for as
-// long as the encounter lasts. The order goes out urgent on the shared channel;
+// drone's reported position and velocity, and its route ahead flown as its
+// navigator flies it, it predicts every pair's closest approach over
+// `horizon_s`, and when that falls under `separation_m` it orders one drone of
+// the pair to another altitude (radio CommandType::kAvoid) for as long as the
+// encounter lasts. The order goes out urgent on the shared channel;
 // the horizon covers the telemetry's age, the order's wait for its turn and the
 // climb itself (docs/separation.md has the budget).
 //
@@ -68,10 +69,13 @@ struct TrafficSample {
   /// a few seconds only (a change of layer ends soon).
   std::optional<double> intent_altitude_m;
   /// The waypoints ahead (east, north, up), the one it flies to first, while it
-  /// flies its mission's route at route_speed_mps; empty otherwise. Take-off
-  /// clearances predict it along them (the tactical watch: straight on).
+  /// flies its mission's route (or its way home) at route_speed_mps; empty
+  /// otherwise. The watch and the clearances predict it along them.
   std::vector<Eigen::Vector3d> route_m;
   double route_speed_mps = 0.0;
+  /// It stops at the route's last point (its stand, on its way home); otherwise
+  /// it flies on there.
+  bool route_stops = false;
 };
 
 enum class Resolution : std::uint8_t {
@@ -182,8 +186,8 @@ class TrafficControl {
   /// A level order (a take-off or landing held where it is) is released as soon
   /// as no open conflict involves its drone and its own climb or descent from
   /// there is predicted clear of every other drone; a climb or descent order
-  /// runs its course (the drone flies on meanwhile; its own altitude afterwards
-  /// is its route's, which the straight-on watch does not predict).
+  /// runs its course (the drone flies on along its route meanwhile, at the
+  /// ordered altitude).
   /// Runs at most every kStepS (earlier calls return nothing).
   std::vector<AvoidOrder> Step(double now_s);
   static constexpr double kStepS = 0.5;
