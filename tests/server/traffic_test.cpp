@@ -1,7 +1,8 @@
 // The tactical watch (TrafficControl) in closed loop with drones that fly as
 // ordered: head-on, crossing and overtaking pairs at one altitude, a pair in
 // neighbouring layers, resolution off, a lost drone flying home through a crowd;
-// take-offs cleared in turn (ClearToDepart) over a site with traffic.
+// take-offs cleared in turn (ClearToDepart) over a site with traffic; drones
+// predicted along their routes (a turn, a layer change along a leg, a way home).
 // The drones here are kinematic (straight on, climbing or descending at the
 // vehicles' rates toward an ordered altitude after a delay that stands for the
 // radio's); tests/server/traffic_radio_test.cpp sends the orders over the radio.
