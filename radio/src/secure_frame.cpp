@@ -6,6 +6,7 @@
 #include <openssl/evp.h>
 
 #include <algorithm>
+#include <map>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -24,10 +25,37 @@ struct CipherContextDeleter {
 };
 using CipherContext = std::unique_ptr<EVP_CIPHER_CTX, CipherContextDeleter>;
 
-// One context per thread, reset for every frame: allocating one per frame costs
-// more than the cipher on a short frame.
-EVP_CIPHER_CTX* ThreadContext() {
-  thread_local const CipherContext context(EVP_CIPHER_CTX_new());
+// Contexts keyed once, per thread, key and direction. OpenSSL 3 fetches the
+// cipher and expands the key on every full initialisation, which costs more than
+// sealing or opening a short frame; a context keyed once takes each frame's nonce
+// alone (EVP_CipherInit_ex with no cipher and no key keeps both). 250 drones open
+// every broadcast frame, and the server seals and opens under 250 keys.
+struct KeyedContexts {
+  CipherContext seal;
+  CipherContext open;
+};
+
+// More keys than a fleet has (254 vehicles, broadcast, a previous key each): past
+// it the cache starts over rather than grow with every rotation.
+constexpr std::size_t kMaxCachedKeys = 1024;
+
+// The context for `key` in one direction, keyed, or nullptr when OpenSSL fails.
+EVP_CIPHER_CTX* ContextFor(const common::SecretKey& key, bool seal) {
+  thread_local std::map<common::SecretKey, KeyedContexts> contexts;
+  auto found = contexts.find(key);
+  if (found == contexts.end()) {
+    if (contexts.size() >= kMaxCachedKeys) contexts.clear();
+    found = contexts.emplace(key, KeyedContexts{}).first;
+  }
+  CipherContext& context = seal ? found->second.seal : found->second.open;
+  if (!context) {
+    CipherContext fresh(EVP_CIPHER_CTX_new());
+    if (!fresh || EVP_CipherInit_ex(fresh.get(), EVP_aes_256_gcm(), nullptr, key.data(), nullptr,
+                                    seal ? 1 : 0) != 1) {
+      return nullptr;
+    }
+    context = std::move(fresh);
+  }
   return context.get();
 }
 
@@ -65,12 +93,12 @@ void AppendSecureFrame(std::vector<std::uint8_t>& out, std::uint8_t receiver,
   out.resize(data_at + plaintext.size() + kSecureTagSize);
 
   const std::array<std::uint8_t, 12> nonce = SecureNonce(receiver, header);
-  EVP_CIPHER_CTX* context = ThreadContext();
+  EVP_CIPHER_CTX* context = ContextFor(key, /*seal=*/true);
   int written = 0;
   const std::uint8_t* associated = out.data() + start + kPreamble.size();
   const bool ok =
       context != nullptr &&
-      EVP_EncryptInit_ex(context, EVP_aes_256_gcm(), nullptr, key.data(), nonce.data()) == 1 &&
+      EVP_EncryptInit_ex(context, nullptr, nullptr, nullptr, nonce.data()) == 1 &&
       EVP_EncryptUpdate(context, nullptr, &written, associated, SizeAsInt(kAssociatedSize)) == 1 &&
       EVP_EncryptUpdate(context, out.data() + data_at, &written, plaintext.data(),
                         SizeAsInt(plaintext.size())) == 1 &&
@@ -107,18 +135,17 @@ bool OpenSecureFrame(const FrameView& frame, const common::SecretKey& key,
   std::array<std::uint8_t, kSecureTagSize> tag{};
   std::copy_n(frame.sealed.end() - kSecureTagSize, kSecureTagSize, tag.begin());
   plaintext.resize(frame.data.size());
-  EVP_CIPHER_CTX* context = ThreadContext();
+  EVP_CIPHER_CTX* context = ContextFor(key, /*seal=*/false);
   int written = 0;
-  const bool ok =
-      context != nullptr &&
-      EVP_DecryptInit_ex(context, EVP_aes_256_gcm(), nullptr, key.data(), nonce.data()) == 1 &&
-      EVP_DecryptUpdate(context, nullptr, &written, frame.sealed.data(),
-                        SizeAsInt(kAssociatedSize)) == 1 &&
-      EVP_DecryptUpdate(context, plaintext.data(), &written, frame.data.data(),
-                        SizeAsInt(frame.data.size())) == 1 &&
-      EVP_CIPHER_CTX_ctrl(context, EVP_CTRL_GCM_SET_TAG, SizeAsInt(kSecureTagSize), tag.data()) ==
-          1 &&
-      EVP_DecryptFinal_ex(context, plaintext.data() + plaintext.size(), &written) == 1;
+  const bool ok = context != nullptr &&
+                  EVP_DecryptInit_ex(context, nullptr, nullptr, nullptr, nonce.data()) == 1 &&
+                  EVP_DecryptUpdate(context, nullptr, &written, frame.sealed.data(),
+                                    SizeAsInt(kAssociatedSize)) == 1 &&
+                  EVP_DecryptUpdate(context, plaintext.data(), &written, frame.data.data(),
+                                    SizeAsInt(frame.data.size())) == 1 &&
+                  EVP_CIPHER_CTX_ctrl(context, EVP_CTRL_GCM_SET_TAG, SizeAsInt(kSecureTagSize),
+                                      tag.data()) == 1 &&
+                  EVP_DecryptFinal_ex(context, plaintext.data() + plaintext.size(), &written) == 1;
   if (!ok) plaintext.clear();
   return ok;
 }

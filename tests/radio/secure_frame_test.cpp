@@ -89,6 +89,34 @@ TEST(SecureFrame, AnyChangedHeaderOrDataByteFailsAuthentication) {
   }
 }
 
+// Each key's cipher is keyed once per thread and takes only a nonce per frame:
+// a frame that failed, or a frame under another key, leaves nothing behind.
+TEST(SecureFrame, AFailedOpenOrAnotherKeyLeavesTheNextFrameUnchanged) {
+  Bytes out;
+  AppendSecureFrame(out, 5, 0x41, Bytes{1, 2, 3}, SecureHeader{5, 1}, KeyOf(9));
+  AppendSecureFrame(out, 6, 0x41, Bytes{4, 5, 6}, SecureHeader{6, 1}, KeyOf(8));
+  AppendSecureFrame(out, 5, 0x42, Bytes{7, 8}, SecureHeader{5, 2}, KeyOf(9));
+  const std::vector<Parsed> frames = Parse(out);
+  ASSERT_EQ(frames.size(), 3U);
+  Parsed forged = frames[0];
+  forged.sealed.back() ^= 0x80;  // the tag's last byte
+  Bytes plaintext;
+  for (int round = 0; round < 2; ++round) {
+    EXPECT_FALSE(Open(forged, KeyOf(9), plaintext));
+    ASSERT_TRUE(Open(frames[2], KeyOf(9), plaintext));
+    EXPECT_EQ(plaintext, (Bytes{7, 8}));
+    EXPECT_FALSE(Open(frames[1], KeyOf(9), plaintext)) << "frame 2 is under key 8";
+    ASSERT_TRUE(Open(frames[1], KeyOf(8), plaintext));
+    EXPECT_EQ(plaintext, (Bytes{4, 5, 6}));
+    ASSERT_TRUE(Open(frames[0], KeyOf(9), plaintext));
+    EXPECT_EQ(plaintext, (Bytes{1, 2, 3}));
+  }
+  // Sealing again after all that gives the same bytes as before.
+  Bytes again;
+  AppendSecureFrame(again, 5, 0x41, Bytes{1, 2, 3}, SecureHeader{5, 1}, KeyOf(9));
+  EXPECT_EQ(again, Bytes(out.begin(), out.begin() + static_cast<std::ptrdiff_t>(again.size())));
+}
+
 TEST(SecureFrame, NonceSeparatesDirectionsAndKeys) {
   const SecureHeader header{3, 42};
   EXPECT_NE(SecureNonce(kServerId, header), SecureNonce(3, header));
