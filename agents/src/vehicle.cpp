@@ -190,9 +190,10 @@ void Vehicle::UpdateTelemetry(Nanos now) {
   radio::Telemetry telemetry;
   telemetry.time_ms = static_cast<std::uint32_t>(
       std::chrono::duration_cast<std::chrono::milliseconds>(now).count());
-  const common::LatLon position = estimator_.position();
-  telemetry.lat_deg = position.lat_deg;
-  telemetry.lon_deg = position.lon_deg;
+  // Latitude and longitude wait for a reply that needs them (CompleteTelemetry).
+  telemetry_local_.reset();
+  if (state.has_position) telemetry_local_ = state.position_local;
+  telemetry_position_.reset();
   telemetry.altitude_m = state.altitude_m;
   telemetry.velocity_north_mps = state.velocity_north_mps;
   telemetry.velocity_east_mps = state.velocity_east_mps;
@@ -217,6 +218,13 @@ void Vehicle::UpdateTelemetry(Nanos now) {
   telemetry.waypoint_index =
       static_cast<std::uint16_t>(on_route ? navigator_->waypoint_index() : resume_index_);
   endpoint_.SetTelemetry(telemetry);
+}
+
+void Vehicle::CompleteTelemetry(radio::Telemetry& telemetry) const {
+  if (!telemetry_local_) return;  // no fix yet: 0, 0 as set
+  if (!telemetry_position_) telemetry_position_ = estimator_.frame()->ToGeodetic(*telemetry_local_);
+  telemetry.lat_deg = telemetry_position_->lat_deg;
+  telemetry.lon_deg = telemetry_position_->lon_deg;
 }
 
 }  // namespace fireswarm::agents

@@ -237,6 +237,7 @@ std::optional<Message> VehicleEndpoint::ReplyFor(ReplyKind kind, std::size_t rep
   if (!reports_.empty()) telemetry.flags |= telemetry_flags::kReportPending;
   telemetry.pending_reports =
       static_cast<std::uint8_t>(std::min(reports_.size(), kMaxPendingCount));
+  handler_.CompleteTelemetry(telemetry);
   return telemetry;
 }
 

@@ -96,6 +96,7 @@ class Vehicle final : public radio::VehicleRequestHandler {
   radio::MissionAckStatus OnMissionChunk(const radio::MissionChunk& chunk) override;
   radio::ParamValue OnParamRead(const radio::ParamRead& read) override;
   radio::ParamValue OnParamWrite(const radio::ParamWrite& write) override;
+  void CompleteTelemetry(radio::Telemetry& telemetry) const override;
 
   std::uint8_t id() const { return config_.id; }
   radio::FlightMode mode() const { return mode_; }
@@ -175,6 +176,10 @@ class Vehicle final : public radio::VehicleRequestHandler {
   std::optional<Nanos> last_heard_;
   std::optional<Nanos> last_navigation_;
   std::optional<Nanos> last_telemetry_;
+  /// The position of the latest telemetry update, in the estimator's frame (none
+  /// before the first fix), and as latitude and longitude once a reply asked.
+  std::optional<common::EastNorth> telemetry_local_;
+  mutable std::optional<common::LatLon> telemetry_position_;
   std::optional<Nanos> investigate_until_;
   bool investigate_approach_ = false;  ///< investigating, still on the way to the circle
   NavigationSetpoint navigation_setpoint_;

@@ -31,6 +31,12 @@ class VehicleRequestHandler {
   virtual ParamValue OnParamRead(const ParamRead& read) = 0;
   /// Writes (and persists) the parameter; returns the value now held and the status.
   virtual ParamValue OnParamWrite(const ParamWrite& write) = 0;
+  /// Called on every telemetry reply, before it is sent: fills in what the
+  /// handler leaves out of SetTelemetry() because it costs more to keep current
+  /// than to work out once per reply (the vehicle's latitude and longitude: it
+  /// updates its telemetry ten times a second, and a crowded channel asks for it
+  /// every few seconds).
+  virtual void CompleteTelemetry(Telemetry& /*telemetry*/) const {}
 };
 
 struct VehicleEndpointConfig {
