@@ -41,30 +41,30 @@ void VehicleRegistry::Register(int receiver_id) {
                                 std::to_string(kLastVehicleId));
   }
   const auto id = static_cast<std::uint8_t>(receiver_id);
-  VehicleState vehicle;
-  vehicle.id = id;
-  if (!vehicles_.emplace(id, vehicle).second) {
+  if (vehicles_[id]) {
     throw std::invalid_argument("vehicle registry: receiver ID " + std::to_string(receiver_id) +
                                 " is already registered");
   }
+  vehicles_[id].emplace().id = id;
+  ++size_;
 }
 
 bool VehicleRegistry::Contains(std::uint8_t receiver_id) const {
-  return vehicles_.contains(receiver_id);
+  return vehicles_[receiver_id].has_value();
 }
 
 VehicleState* VehicleRegistry::Find(std::uint8_t receiver_id) {
-  const auto it = vehicles_.find(receiver_id);
-  return it == vehicles_.end() ? nullptr : &it->second;
+  std::optional<VehicleState>& vehicle = vehicles_[receiver_id];
+  return vehicle ? &*vehicle : nullptr;
 }
 
 const VehicleState& VehicleRegistry::Get(std::uint8_t receiver_id) const {
-  const auto it = vehicles_.find(receiver_id);
-  if (it == vehicles_.end()) {
+  const std::optional<VehicleState>& vehicle = vehicles_[receiver_id];
+  if (!vehicle) {
     throw std::out_of_range("vehicle registry: receiver ID " + std::to_string(receiver_id) +
                             " is not registered");
   }
-  return it->second;
+  return *vehicle;
 }
 
 bool VehicleRegistry::OnTelemetry(const radio::Telemetry& telemetry, double now_s) {
@@ -118,15 +118,17 @@ std::optional<double> VehicleRegistry::TelemetryAgeS(std::uint8_t receiver_id, d
 
 std::vector<std::uint8_t> VehicleRegistry::ids() const {
   std::vector<std::uint8_t> out;
-  out.reserve(vehicles_.size());
-  for (const auto& [id, vehicle] : vehicles_) out.push_back(id);
+  out.reserve(size_);
+  for (const std::optional<VehicleState>& vehicle : vehicles_) {
+    if (vehicle) out.push_back(vehicle->id);
+  }
   return out;
 }
 
 std::vector<std::uint8_t> VehicleRegistry::IdsWhere(double now_s, bool (*keep)(LinkState)) const {
   std::vector<std::uint8_t> out;
-  for (const auto& [id, vehicle] : vehicles_) {
-    if (keep(LinkOf(vehicle, now_s))) out.push_back(id);
+  for (const std::optional<VehicleState>& vehicle : vehicles_) {
+    if (vehicle && keep(LinkOf(*vehicle, now_s))) out.push_back(vehicle->id);
   }
   return out;
 }

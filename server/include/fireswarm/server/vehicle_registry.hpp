@@ -6,8 +6,8 @@
 // (seconds); nothing here reads a clock or touches the radio.
 #pragma once
 
+#include <array>
 #include <cstdint>
-#include <map>
 #include <optional>
 #include <string_view>
 #include <vector>
@@ -122,7 +122,7 @@ class VehicleRegistry {
   /// IDs whose link is kOk or kDegraded at `now_s`, ascending.
   std::vector<std::uint8_t> ActiveAt(double now_s) const;
 
-  std::size_t size() const { return vehicles_.size(); }
+  std::size_t size() const { return size_; }
   const LinkThresholds& thresholds() const { return thresholds_; }
 
  private:
@@ -132,7 +132,10 @@ class VehicleRegistry {
   std::vector<std::uint8_t> IdsWhere(double now_s, bool (*keep)(LinkState)) const;
 
   LinkThresholds thresholds_;
-  std::map<std::uint8_t, VehicleState> vehicles_;  // ordered: ids() ascending for free
+  // By receiver ID: the server looks vehicles up several times per step for
+  // each of up to 254 drones, and walks them in ascending ID order.
+  std::array<std::optional<VehicleState>, 256> vehicles_;
+  std::size_t size_ = 0;
 };
 
 }  // namespace fireswarm::server
