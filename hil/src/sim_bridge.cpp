@@ -1,5 +1,6 @@
 #include "fireswarm/hil/sim_bridge.hpp"
 
+#include <array>
 #include <stdexcept>
 #include <string>
 
@@ -70,15 +71,20 @@ void LockstepFleet::Remove(int id) {
 void LockstepFleet::Step() {
   simulation_.Step();
   const common::Nanos time = now();
+  // This step's frames by vehicle ID (receiver IDs are 1..254).
+  std::array<const sim2d::ThermalImage*, 256> images{};
+  for (const sim2d::CameraFrame& taken : simulation_.new_frames()) {
+    if (taken.vehicle_id >= 0 && taken.vehicle_id < static_cast<int>(images.size())) {
+      images[static_cast<std::size_t>(taken.vehicle_id)] = taken.image;
+    }
+  }
   for (agents::Vehicle* vehicle : vehicles_) {
     const int id = vehicle->id();
     agents::SensorInputs inputs = ToVehicleInputs(simulation_.world().Sensors(id));
     agents::CameraFrame frame;
-    for (const sim2d::CameraFrame& taken : simulation_.new_frames()) {
-      if (taken.vehicle_id == id) {
-        frame = ToCameraFrame(*taken.image);
-        inputs.frame = &frame;
-      }
+    if (const sim2d::ThermalImage* image = images[static_cast<std::size_t>(id)]) {
+      frame = ToCameraFrame(*image);
+      inputs.frame = &frame;
     }
     simulation_.world().SetCommand(id, ToActuatorCommand(vehicle->Step(time, inputs)));
   }

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <span>
 #include <string>
 #include <unordered_set>
 #include <utility>
@@ -104,13 +105,22 @@ Scorer::Scorer(const Scenario& scenario, std::vector<FireSpec> fires)
   for (const int id : scenario.fleet.ReceiverIds()) traces_[id] = VehicleTrace{};
 }
 
+Scorer::VehicleTrace& Scorer::TraceOf(std::size_t truth_index, int id) {
+  if (truth_index >= truth_traces_.size()) truth_traces_.resize(truth_index + 1, {0, nullptr});
+  std::pair<int, VehicleTrace*>& entry = truth_traces_[truth_index];
+  if (entry.second == nullptr || entry.first != id) entry = {id, &traces_[id]};
+  return *entry.second;
+}
+
 void Scorer::Observe(double t_s, const sim2d::Simulation& simulation,
                      const server::Server& server) {
   constexpr double kEps = 1e-9;
   const sim2d::World& world = simulation.world();
   ++steps_;
-  for (const sim2d::VehicleTruth& truth : world.Truths()) {
-    VehicleTrace& trace = traces_[truth.id];
+  const std::span<const sim2d::VehicleTruth> truths = world.Truths();
+  for (std::size_t i = 0; i < truths.size(); ++i) {
+    const sim2d::VehicleTruth& truth = truths[i];
+    VehicleTrace& trace = TraceOf(i, truth.id);
     if (trace.last_position_m) {
       const double dh = (truth.position_m - *trace.last_position_m).norm();
       const double dv = truth.altitude_m - trace.last_altitude_m;
@@ -140,11 +150,11 @@ void Scorer::Observe(double t_s, const sim2d::Simulation& simulation,
   }
   if (t_s + kEps >= next_track_s_) {
     next_track_s_ += kTrackSampleS;
-    for (const sim2d::VehicleTruth& truth : world.Truths()) {
-      VehicleTrace& trace = traces_[truth.id];
+    for (std::size_t i = 0; i < truths.size(); ++i) {
+      VehicleTrace& trace = TraceOf(i, truths[i].id);
       if (++trace.track_skipped < trace.track_every) continue;
       trace.track_skipped = 0;
-      trace.track.push_back(ToLatLon(world.frame(), truth.position_m));
+      trace.track.push_back(ToLatLon(world.frame(), truths[i].position_m));
       if (trace.track.size() < kMaxTrackPoints) continue;
       KeepEveryOther(trace.track);
       trace.track_every *= 2;

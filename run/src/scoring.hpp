@@ -118,6 +118,10 @@ class Scorer {
   planner::CoverageGrid coverage_;
   std::vector<std::pair<double, double>> coverage_over_time_;
   std::map<int, VehicleTrace> traces_;
+  // traces_'s entries in world.Truths() order, each with its vehicle's ID (map
+  // nodes stay put): a lookup per vehicle and step was a map walk each.
+  std::vector<std::pair<int, VehicleTrace*>> truth_traces_;
+  VehicleTrace& TraceOf(std::size_t truth_index, int id);
   struct Confirmation {
     double t_s = 0.0;
     bool on_fire = false;  // near a fire cell that had ignited by then

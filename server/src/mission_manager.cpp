@@ -39,6 +39,7 @@ MissionManager::MissionManager(radio::ChannelRouter& scheduler,
                                   " has two missions in one plan");
     }
     by_id_[vehicle] = &drones_.emplace(vehicle, DroneFor(std::move(mission))).first->second;
+    next_wakeup_.reset();
   }
 }
 
@@ -81,6 +82,7 @@ void MissionManager::Replace(DroneMission mission, bool send) {
   const std::size_t flown = drone.progress.sorties_flown;
   const bool swapping = drone.progress.phase == DronePhase::kSwapping;
   drone = DroneFor(std::move(mission));
+  next_wakeup_.reset();
   drone.progress.sorties_flown = flown;
   ++missions_version_;
   if (swapping) {
@@ -206,14 +208,14 @@ void MissionManager::SendStart(Drone& drone, common::Nanos now, const StartGate&
   if (gate && !gate(drone.mission.vehicle, now)) {
     drone.progress.phase = DronePhase::kStarting;
     ++drone.progress.start_holds;
-    drone.retry_start_at = now + common::FromSeconds(config_.gate_retry_s);
+    SetRetry(drone, now + common::FromSeconds(config_.gate_retry_s));
     return;
   }
   radio::Command start;
   start.type = radio::CommandType::kStartMission;
   start.mission_id = SortieMissionId(drone.mission, drone.progress.sortie);
   drone.progress.phase = DronePhase::kStarting;
-  drone.retry_start_at = common::Nanos::max();
+  SetRetry(drone, common::Nanos::max());
   pending_[scheduler_.SendCommand(drone.mission.vehicle, start)] =
       Pending{drone.mission.vehicle, -1};
 }
@@ -221,7 +223,7 @@ void MissionManager::SendStart(Drone& drone, common::Nanos now, const StartGate&
 void MissionManager::Fail(Drone& drone, std::string why) {
   drone.progress.phase = DronePhase::kFailed;
   drone.progress.failure = std::move(why);
-  drone.retry_start_at = common::Nanos::max();
+  SetRetry(drone, common::Nanos::max());
 }
 
 void MissionManager::OnEvent(const radio::SchedulerEvent& event, const StartGate& gate) {
@@ -267,7 +269,7 @@ void MissionManager::OnFinished(const radio::RequestFinished& finished,
 
   // The start command.
   if (finished.status == radio::RequestStatus::kFailed) {
-    drone.retry_start_at = finished.finished;  // unanswered: ask again at once
+    SetRetry(drone, finished.finished);  // unanswered: ask again at once
     return;
   }
   const auto* ack = finished.ack ? std::get_if<radio::CommandAck>(&*finished.ack) : nullptr;
@@ -276,7 +278,7 @@ void MissionManager::OnFinished(const radio::RequestFinished& finished,
     return;
   }
   ++drone.progress.start_refusals;
-  drone.retry_start_at = finished.finished + common::FromSeconds(config_.start_retry_s);
+  SetRetry(drone, finished.finished + common::FromSeconds(config_.start_retry_s));
 }
 
 void MissionManager::OnTelemetry(const radio::TelemetryReceived& received) {
@@ -367,10 +369,19 @@ void MissionManager::Step(common::Nanos now, const StartGate& gate) {
   }
 }
 
+void MissionManager::SetRetry(Drone& drone, common::Nanos at) {
+  drone.retry_start_at = at;
+  next_wakeup_.reset();
+}
+
 common::Nanos MissionManager::NextWakeup() const {
-  common::Nanos next = common::Nanos::max();
-  for (const auto& [vehicle, drone] : drones_) next = std::min(next, drone.retry_start_at);
-  return next;
+  if (!next_wakeup_) {
+    next_wakeup_ = common::Nanos::max();
+    for (const auto& [vehicle, drone] : drones_) {
+      next_wakeup_ = std::min(*next_wakeup_, drone.retry_start_at);
+    }
+  }
+  return *next_wakeup_;
 }
 
 void MissionManager::RestorePhase(std::uint8_t vehicle, DronePhase phase, std::size_t sortie,
@@ -400,7 +411,7 @@ void MissionManager::RestorePhase(std::uint8_t vehicle, DronePhase phase, std::s
       sortie + (phase == DronePhase::kSwapping || phase == DronePhase::kDone ? 1 : 0);
   drone.progress.phase = phase;
   if (phase != DronePhase::kUploading) drone.progress.chunks_acked = drone.chunks.size();
-  drone.retry_start_at = phase == DronePhase::kStarting ? common::Nanos{0} : common::Nanos::max();
+  SetRetry(drone, phase == DronePhase::kStarting ? common::Nanos{0} : common::Nanos::max());
 }
 
 const DroneProgress& MissionManager::progress(std::uint8_t vehicle) const {

@@ -265,6 +265,9 @@ class MissionManager {
   void OnFinished(const radio::RequestFinished& finished, const StartGate& gate);
   void OnTelemetry(const radio::TelemetryReceived& telemetry);
   void Fail(Drone& drone, std::string why);
+  // Every change of a drone's retry_start_at goes through here: it forgets the
+  // earliest one, which NextWakeup() keeps (the radio loop asks before each step).
+  void SetRetry(Drone& drone, common::Nanos at);
 
   radio::ChannelRouter& scheduler_;
   MissionManagerConfig config_;
@@ -278,6 +281,7 @@ class MissionManager {
   };
   std::map<radio::RequestId, Pending> pending_;
   std::uint64_t missions_version_ = 0;
+  mutable std::optional<common::Nanos> next_wakeup_;  // NextWakeup(), until a retry changes
   bool sorties_stopped_ = false;
 };
 
