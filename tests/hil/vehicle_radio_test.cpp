@@ -3,6 +3,8 @@
 // every command is answered.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <map>
 #include <string>
@@ -154,6 +156,60 @@ TEST(VehicleRadio, FireReportsSurviveALossyLinkAndArriveOnce) {
   EXPECT_EQ(stats.reports_acked, stats.reports_queued);
   EXPECT_EQ(vehicle.endpoint().pending_reports(), 0U);
   EXPECT_GT(mission.link.channel().stats().receptions_lost, 0U);  // the link did lose frames
+}
+
+// The telemetry's latitude and longitude are worked out only when a reply is
+// sent, from the position of the vehicle's latest telemetry update: each reply
+// puts the drone where its estimate was at the telemetry's time, in flight too.
+TEST(VehicleRadio, TelemetryPutsTheDroneWhereItsEstimateWasAtTheTelemetrysTime) {
+  Mission mission(OneVehicleWorld(Vec2(300.0, -200.0)));
+  // Refreshed once a second and asked for twice: every other reply carries a
+  // telemetry half a second old, position and all.
+  agents::VehicleConfig config;
+  config.telemetry_hz = 1.0;
+  agents::Vehicle& vehicle = mission.AddVehicle(config);
+  mission.RunUntil(1.0);  // a GPS fix first: without one the start is refused
+  const auto first = mission.link.EventsOf<radio::TelemetryReceived>();
+  ASSERT_FALSE(first.empty());
+  EXPECT_EQ(first.front().telemetry.flags & radio::telemetry_flags::kGpsFix, 0);
+  EXPECT_EQ(first.front().telemetry.lat_deg, 0.0) << "no fix yet, no position";
+  mission.link.UploadAndStart(1, 4,
+                              {WaypointAt(mission, Vec2(300.0, -100.0), 40.0, true),
+                               WaypointAt(mission, Vec2(300.0, 400.0), 40.0)});
+  // The estimate (in the vehicle's own frame) and the truth at every step.
+  std::map<std::int64_t, std::pair<Vec2, Vec2>> at_ms;
+  mission.RunUntil(60.0, [&] {
+    const common::EastNorth estimate = vehicle.estimate().position_local;
+    at_ms[std::llround(mission.simulation.time_s() * 1000.0)] = {
+        Vec2(estimate.east_m, estimate.north_m), mission.Truth(1).position_m};
+  });
+  std::vector<std::pair<Vec2, Vec2>> reported_and_estimate;
+  double worst_from_truth_m = 0.0;
+  double fastest_mps = 0.0;
+  for (const radio::TelemetryReceived& event : mission.link.EventsOf<radio::TelemetryReceived>()) {
+    const radio::Telemetry& telemetry = event.telemetry;
+    const auto at = at_ms.find(telemetry.time_ms);
+    if (at == at_ms.end()) continue;  // before the first second
+    ASSERT_NE(telemetry.flags & radio::telemetry_flags::kGpsFix, 0) << telemetry.time_ms;
+    const common::EastNorth reported =
+        mission.simulation.world().frame().ToLocal({telemetry.lat_deg, telemetry.lon_deg});
+    const Vec2 reported_m(reported.east_m, reported.north_m);
+    reported_and_estimate.emplace_back(reported_m, at->second.first);
+    worst_from_truth_m = std::max(worst_from_truth_m, (reported_m - at->second.second).norm());
+    fastest_mps = std::max(fastest_mps,
+                           std::hypot(telemetry.velocity_east_mps, telemetry.velocity_north_mps));
+  }
+  ASSERT_GE(reported_and_estimate.size(), 100U);  // 2 Hz for 59 s
+  EXPECT_GT(fastest_mps, 8.0) << "the drone must have flown its lane";
+  EXPECT_LT(worst_from_truth_m, 10.0) << "GPS noise and bias only";
+  // The two frames have different origins; how far the drone moved between two
+  // replies is the same in both (a position from another time would differ by
+  // the distance flown in between: 5 m at 10 m/s in half a second).
+  for (std::size_t i = 1; i < reported_and_estimate.size(); ++i) {
+    const auto& [reported_a, estimate_a] = reported_and_estimate[i - 1];
+    const auto& [reported_b, estimate_b] = reported_and_estimate[i];
+    EXPECT_NEAR((reported_b - reported_a).norm(), (estimate_b - estimate_a).norm(), 0.05) << i;
+  }
 }
 
 }  // namespace
