@@ -424,7 +424,8 @@ std::vector<Motion> Motions(const std::map<int, TrafficSample>& tracks, const au
     const double age_s = std::clamp(now_s - sample.at_s, 0.0, kMaxExtrapolationS);
     Motion m;
     m.vehicle = vehicle;
-    m.velocity_mps = Horizontal(sample.velocity_mps);
+    m.velocity_mps = sample.holds_position ? Eigen::Vector2d::Zero()
+                                           : Eigen::Vector2d(Horizontal(sample.velocity_mps));
     m.position_m = Horizontal(sample.position_m) + m.velocity_mps * age_s;
     m.climb_mps = sample.velocity_mps.z();
     m.intent_m = sample.intent_altitude_m;

@@ -592,6 +592,45 @@ TEST(TrafficControl, ADroneOnItsWayHomeIsPredictedToStopOverItsStand) {
   EXPECT_EQ(straight.counts().conflicts, 0U);
 }
 
+TEST(TrafficControl, ALandingIsPredictedStraightDownWhereItIs) {
+  // Drones 1 and 2 come down over stands 20 m apart, 40 m up, drone 1 with
+  // 0.4 m/s of drift toward drone 2's stand in its telemetry (its hold
+  // working against the wind). Carried on for the 30 s horizon, the drift
+  // would bring it 12 m from drone 2: a conflict. A landing holds its point.
+  SeparationConfig config;
+  TrafficSample landing;
+  landing.position_m = {0.0, 0.0, 40.0};
+  landing.velocity_mps = {0.4, 0.0, -1.0};
+  landing.intent_altitude_m = 0.0;
+  TrafficSample neighbour = landing;
+  neighbour.position_m = {20.0, 0.0, 40.0};
+  neighbour.velocity_mps = {0.0, 0.0, -1.0};
+
+  TrafficControl drifting(config);
+  drifting.Observe(1, landing);
+  drifting.Observe(2, neighbour);
+  drifting.Step(0.0);
+  EXPECT_EQ(drifting.counts().conflicts, 1U);
+
+  TrafficControl holding(config);
+  landing.holds_position = true;
+  neighbour.holds_position = true;
+  holding.Observe(1, landing);
+  holding.Observe(2, neighbour);
+  holding.Step(0.0);
+  EXPECT_EQ(holding.counts().conflicts, 0U);
+
+  // Holding its point is horizontal only: a landing still comes down onto a
+  // drone hovering below it.
+  TrafficControl below(config);
+  below.Observe(1, landing);
+  TrafficSample hovering;
+  hovering.position_m = {0.0, 0.0, 15.0};
+  below.Observe(2, hovering);
+  below.Step(0.0);
+  EXPECT_EQ(below.counts().conflicts, 1U);
+}
+
 TEST(SeparationConfig, RefusesBadValuesNamingTheField) {
   SeparationConfig config;
   config.separation_m = -1.0;

@@ -76,6 +76,9 @@ struct TrafficSample {
   /// It stops at the route's last point (its stand, on its way home); otherwise
   /// it flies on there.
   bool route_stops = false;
+  /// It holds its position where it is (a landing comes straight down over the
+  /// point where it began): its reported horizontal drift is not carried on.
+  bool holds_position = false;
 };
 
 enum class Resolution : std::uint8_t {
