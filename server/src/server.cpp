@@ -332,6 +332,23 @@ void Server::WatchTraffic(std::uint8_t vehicle, const radio::Telemetry& telemetr
       sample.route_speed_mps = speed_mps > 0.0 ? speed_mps : kLostDroneSpeedMps;
     }
   }
+  // Taking off: straight up where it is to its climb-out altitude, then on its
+  // way along its sortie (agents' take-off mode holds its point while it
+  // climbs). The drift its telemetry reports is the hold chasing GPS noise, a
+  // few tenths of a m/s either way: carried on for the horizon, it made
+  // neighbouring take-offs conflicts and held them level in the air.
+  const std::span<const radio::Waypoint> climbing_to = telemetry.mode == radio::FlightMode::kTakeoff
+                                                           ? SortieFlown(mission(), vehicle)
+                                                           : std::span<const radio::Waypoint>{};
+  if (!climbing_to.empty() && climbing_to.front().altitude_m > 0.0 &&
+      telemetry.mission_id ==
+          SortieMissionId(mission_->mission_of(vehicle), mission_->progress(vehicle).sortie)) {
+    sample.route_m = RouteAhead(climbing_to, 0);
+    sample.route_speed_mps =
+        climbing_to.front().speed_mps > 0.0 ? climbing_to.front().speed_mps : kLostDroneSpeedMps;
+    sample.departing = true;
+    sample.holds_position = true;
+  }
   // On its way home: straight to its stand at its return layer, where it stops
   // and comes down (agents' return to launch). Straight on, it would be
   // predicted flying on past its stand, and a drone crossing over the stand
@@ -383,8 +400,17 @@ bool Server::ClearToTakeOff(std::uint8_t vehicle, double now_s) {
   if (!config_.separation.sequence_takeoffs) return true;
   const auto stand = stand_en_m_.find(vehicle);
   const std::span<const radio::Waypoint> sortie = SortieFlown(mission(), vehicle);
-  if (stand == stand_en_m_.end() || sortie.empty() || sortie.front().altitude_m <= 0.0) {
+  if (sortie.empty() || sortie.front().altitude_m <= 0.0) {
     return true;  // nothing to predict its take-off from
+  }
+  if (stand == stand_en_m_.end()) {
+    // Not yet heard (on a crowded channel the first telemetry takes seconds):
+    // it waits. Started blind, its climb and way out would be unpredicted in
+    // every later clearance, and neighbours whose lanes start together would
+    // leave together. Heard in the air, it takes off from no stand: it goes.
+    const std::optional<radio::Telemetry>& heard = registry_.state(vehicle).telemetry;
+    return heard && heard->mode != radio::FlightMode::kIdle &&
+           heard->mode != radio::FlightMode::kLanded;
   }
   Departure departure;
   departure.stand_m = stand->second;

@@ -81,6 +81,8 @@ constexpr double kMinRouteSpeedMps = 0.1;
 // holds the speed it reports there (the wind, its speed loop); slower, it is
 // speeding up to cruise.
 constexpr double kHoldsItsSpeedFraction = 0.5;
+// A take-off an order holds sets off this late: never, within any horizon.
+constexpr double kHeldDepartureS = 1e6;
 
 // A part of a route's leg flown at one acceleration: from at_s (since the route
 // starts), along_m into leg `leg`, at speed_mps.
@@ -126,6 +128,22 @@ struct Motion {
 
   // Whether it moves along one straight line at one velocity all the time.
   bool Straight() const { return !ghost && !departing && route.empty(); }
+  // Ordered to `altitude` from `after_s` on. A take-off flies its order where
+  // it is (agents' take-off mode holds its point) and sets off only once the
+  // order ends: held there over any horizon.
+  void Order(double altitude, double after_s) {
+    target_m = altitude;
+    target_after_s = after_s;
+    if (departing) climb_starts_s = route_starts_s = kHeldDepartureS;
+  }
+  // Its order ended now: a take-off climbs on and sets off.
+  void Unorder() {
+    target_m.reset();
+    if (departing && climb_starts_s >= kHeldDepartureS) {
+      climb_starts_s = 0.0;
+      route_starts_s = ClimbEndS();
+    }
+  }
   double ClimbEndS() const {
     return climb_starts_s + std::max(0.0, climb_out_m - altitude_m) / kClimbMps;
   }
@@ -435,6 +453,14 @@ std::vector<Motion> Motions(const std::map<int, TrafficSample>& tracks, const au
     if (departure != departures.end()) {
       m = DepartureMotion(vehicle, departure->second.departure, m.position_m, m.altitude_m, 0.0);
       m.climb_mps = sample.velocity_mps.z();
+    } else if (sample.departing && !sample.route_m.empty()) {
+      // Taking off: up where it is, then on its way along its sortie.
+      Departure taking_off;
+      taking_off.route_m = sample.route_m;
+      taking_off.speed_mps = sample.route_speed_mps;
+      m = DepartureMotion(vehicle, taking_off, m.position_m, m.altitude_m, 0.0);
+      m.climb_mps = sample.velocity_mps.z();
+      m.intent_m = sample.intent_altitude_m;
     } else if (!sample.route_m.empty()) {
       // Along its route from where it was reported, carried on to now.
       std::vector<Eigen::Vector3d> route = {sample.position_m};
@@ -446,9 +472,8 @@ std::vector<Motion> Motions(const std::map<int, TrafficSample>& tracks, const au
     }
     const auto order = orders.find(vehicle);
     if (order != orders.end() && order->second.until_s > now_s) {
-      m.target_m = order->second.altitude_m;
       // Ordered a while ago: the climb has started; just now: it starts later.
-      m.target_after_s = std::max(0.0, order->second.from_s + kOrderDelayS - now_s);
+      m.Order(order->second.altitude_m, std::max(0.0, order->second.from_s + kOrderDelayS - now_s));
     }
     out.push_back(m);
   }
@@ -539,7 +564,7 @@ bool ClearToGoOn(const Motion& self, const Departure* departure, const std::vect
         std::max(horizon_s, candidates.back().ClimbEndS() + TrafficControl::kDepartureTransitS);
   } else {
     candidates.push_back(self);
-    candidates.back().target_m.reset();
+    candidates.back().Unorder();
   }
   for (const Motion& released : candidates) {
     const Box box = Sweep(released, horizon_s);
@@ -570,6 +595,22 @@ bool TrafficControl::ClearToDepart(int vehicle, const Departure& departure, doub
   const double horizon_s =
       kStartDelayMaxS + departure.route_m.front().z() / kClimbMps + kDepartureTransitS;
 
+  // Its arrival at its first waypoint (from a start halfway through the delay)
+  // against the others' cleared before it.
+  const Motion planned =
+      DepartureMotion(vehicle, departure, departure.stand_m, 0.0, 0.5 * kStartDelayMaxS);
+  const Arrival arrival{departure.route_m.front().head<2>(),
+                        now_s + planned.route_starts_s + planned.route_at_s[1]};
+  std::erase_if(arrivals_,
+                [&](const auto& entry) { return entry.second.at_s + kArrivalSlotS <= now_s; });
+  for (const auto& [other, slot] : arrivals_) {
+    if (other != vehicle && (slot.at_m - arrival.at_m).norm() < kArrivalReachFactor * reach_m &&
+        std::abs(slot.at_s - arrival.at_s) < kArrivalSlotS) {
+      ++counts_.takeoffs_held;
+      return false;
+    }
+  }
+
   const std::vector<Motion> others =
       ClearanceTraffic(tracks_, ghosts_, orders_, departures_, now_s, vehicle);
 
@@ -589,6 +630,7 @@ bool TrafficControl::ClearToDepart(int vehicle, const Departure& departure, doub
     }
   }
   departures_[vehicle] = Reserved{departure, now_s};
+  arrivals_[vehicle] = arrival;
   return true;
 }
 
@@ -684,8 +726,7 @@ std::vector<AvoidOrder> TrafficControl::Step(double now_s) {
       if (std::abs(self.climb_mps) > 0.5) targets.emplace_back(self.altitude_m, Resolution::kLevel);
       for (const auto& [altitude, resolution] : targets) {
         Motion moved = self;
-        moved.target_m = altitude;
-        moved.target_after_s = kOrderDelayS;
+        moved.Order(altitude, kOrderDelayS);
         double score = std::abs(altitude - self.altitude_m) / config_.layer_m;
         for (std::size_t k = 0; k < motions.size(); ++k) {
           if (k == m || Apart(boxes[m], boxes[k], reach_m)) continue;
@@ -701,9 +742,7 @@ std::vector<AvoidOrder> TrafficControl::Step(double now_s) {
     orders_[best.mover] = Held{best.altitude_m, now_s + order_s, now_s,
                                best.resolution == Resolution::kLevel, ConflictAt(open->second).id};
     // Later pairs see the order.
-    Motion& mover = motions[index_of(best.mover)];
-    mover.target_m = best.altitude_m;
-    mover.target_after_s = kOrderDelayS;
+    motions[index_of(best.mover)].Order(best.altitude_m, kOrderDelayS);
     last_order_s_[p.pair] = now_s;
     out.push_back({best.mover, best.altitude_m, order_s, ConflictAt(open->second).id});
     ++counts_.orders;

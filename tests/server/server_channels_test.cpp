@@ -38,6 +38,9 @@ class TwoChannelFleet {
     for (std::uint8_t id = 1; id <= 4; ++id) {
       server_.AddVehicle(id);
       vehicles_.push_back(std::make_unique<FakeVehicle>(id, radio::LinkMode::kSlots, 0));
+      // On its stand west of its first waypoint (Missions): heard there, it is
+      // cleared to take off.
+      vehicles_.back()->endpoint().SetTelemetry(testing::OnItsStand(-100.0, 50.0 * id, 1'000));
       loops_.at(server_.scheduler().ChannelOf(id))
           ->AddVehicle([&v = *vehicles_.back()](Nanos now, std::span<const std::uint8_t> bytes) {
             return v.endpoint().OnReceive(now, bytes);

@@ -188,6 +188,7 @@ TEST(Server, AStartFollowsEachDronesUploadAndStart) {
     server.AddVehicle(id);
   }
   air.silent.insert(2);
+  air.vehicle(1).endpoint().SetTelemetry(testing::OnItsStand(-100.0, 50.0, 1'000));
   server.LoadMission(Missions({1, 2}));
   std::int32_t id = 0;
   ASSERT_TRUE(server.Handle({Kind::kStart, 0, {}, 0.0, "go"}, Nanos{0}, nullptr, &id));
@@ -197,6 +198,29 @@ TEST(Server, AStartFollowsEachDronesUploadAndStart) {
   EXPECT_EQ(seen.at(2), kUndelivered);
   EXPECT_EQ(TargetOf(server, id, 2).detail, server.mission()->progress(2).failure);
   EXPECT_NE(TargetOf(server, id, 2).detail.find("unanswered"), std::string::npos);
+  EXPECT_EQ(air.vehicle(1).starts_accepted(), 1);
+}
+
+// A start waits until its drone has been heard on its stand: started blind, its
+// take-off would be in no clearance's prediction. Heard on the ground without a
+// GPS fix, it has no stand yet; with one, it is cleared and started.
+TEST(Server, AStartWaitsUntilItsDroneIsHeardOnItsStand) {
+  Air air(0.0);
+  Server server(ServerConfig{}, kFrame);
+  air.Add(1);
+  server.AddVehicle(1);
+  radio::Telemetry no_fix = testing::OnItsStand(-100.0, 50.0, 1'000);
+  no_fix.flags = radio::telemetry_flags::kMissionValid;
+  air.vehicle(1).endpoint().SetTelemetry(no_fix);
+  server.LoadMission(Missions({1}));
+  ASSERT_TRUE(server.Handle({Kind::kStart, 0, {}, 0.0, "go"}, Nanos{0}));
+  air.RunUntil(server, 30 * kSecond);
+  EXPECT_EQ(server.mission()->progress(1).phase, DronePhase::kStarting);
+  EXPECT_GT(server.mission()->progress(1).start_holds, 0);
+  EXPECT_EQ(air.vehicle(1).starts_accepted(), 0);
+
+  air.vehicle(1).endpoint().SetTelemetry(testing::OnItsStand(-100.0, 50.0, 31'000));
+  air.Run(server, 60 * kSecond, [&] { return air.vehicle(1).starts_accepted() == 1; });
   EXPECT_EQ(air.vehicle(1).starts_accepted(), 1);
 }
 

@@ -35,6 +35,15 @@ inline radio::Telemetry Searching(double east_m, double north_m, std::uint32_t t
   return telemetry;
 }
 
+// On the ground at (east, north), with a GPS fix: heard there, the server knows
+// the drone's stand and clears its take-off (a drone not yet heard waits).
+inline radio::Telemetry OnItsStand(double east_m, double north_m, std::uint32_t time_ms) {
+  radio::Telemetry telemetry = Searching(east_m, north_m, time_ms);
+  telemetry.altitude_m = 0.0;
+  telemetry.mode = radio::FlightMode::kIdle;
+  return telemetry;
+}
+
 inline radio::FireReport ReportAt(double east_m, double north_m, double observer_east_m,
                                   std::uint32_t time_ms) {
   const common::LatLon fire = kFrame.ToGeodetic({east_m, north_m});

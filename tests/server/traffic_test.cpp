@@ -631,6 +631,84 @@ TEST(TrafficControl, ALandingIsPredictedStraightDownWhereItIs) {
   EXPECT_EQ(below.counts().conflicts, 1U);
 }
 
+TEST(TrafficControl, ATakeOffIsPredictedUpWhereItIsThenAlongItsWayOut) {
+  // Drones 1 and 2 take off from stands 20 m apart, 30 m up, climbing to
+  // 105 m; drone 1's telemetry reports 0.5 m/s of drift toward drone 2 (its
+  // hold chasing GPS noise). Carried on for the 30 s horizon, that drift
+  // brings them 5 m apart: a conflict.
+  SeparationConfig config;
+  TrafficSample one;
+  one.position_m = {0.0, 0.0, 30.0};
+  one.velocity_mps = {0.5, 0.0, 3.0};
+  one.intent_altitude_m = 105.0;
+  TrafficSample two = one;
+  two.position_m = {20.0, 0.0, 30.0};
+  two.velocity_mps = {0.0, 0.0, 3.0};
+  TrafficControl drifting(config);
+  drifting.Observe(1, one);
+  drifting.Observe(2, two);
+  drifting.Step(0.0);
+  EXPECT_EQ(drifting.counts().conflicts, 1U);
+
+  // As departures: each climbs where it is, then flies its way out (both
+  // north, 20 m apart).
+  for (TrafficSample* takeoff : {&one, &two}) {
+    takeoff->departing = true;
+    takeoff->holds_position = true;
+    takeoff->route_speed_mps = 10.0;
+  }
+  one.route_m = {{0.0, 800.0, 105.0}};
+  two.route_m = {{20.0, 800.0, 105.0}};
+  TrafficControl departing(config);
+  departing.Observe(1, one);
+  departing.Observe(2, two);
+  departing.Step(0.0);
+  EXPECT_EQ(departing.counts().conflicts, 0U);
+
+  // Its way out is watched: near the top of its climb (90 m), drone 1 is 25 s
+  // from a drone hovering at 105 m, 150 m north of its stand. Held over its
+  // point, it would not be.
+  TrafficSample hovering;
+  hovering.position_m = {0.0, 150.0, 105.0};
+  one.position_m.z() = 90.0;
+  for (const bool along_its_way : {true, false}) {
+    SCOPED_TRACE(along_its_way);
+    TrafficSample takeoff = one;
+    if (!along_its_way) takeoff.route_m.clear();
+    TrafficControl watch(config);
+    watch.Observe(1, takeoff);
+    watch.Observe(3, hovering);
+    watch.Step(0.0);
+    EXPECT_EQ(watch.counts().conflicts, along_its_way ? 1U : 0U);
+  }
+}
+
+TEST(TrafficControl, NeighboursWhoseLanesStartTogetherTakeOffAnArrivalSlotApart) {
+  // Stands 20 m apart; lanes starting 3 m apart 1.5 km north, both reached at
+  // 105 m. Their ways out converge so slowly that the climb and its first 20 s
+  // are clear; left together they would fly the whole way abreast and meet at
+  // the end.
+  SeparationConfig config;
+  TrafficControl watch(config);
+  std::vector<TakeOff> takeoffs = {TakeOff(1, {0.0, 0.0}, {0.0, 1500.0}),
+                                   TakeOff(2, {20.0, 0.0}, {3.0, 1500.0})};
+  const double closest_m = FlyTakeOffs(takeoffs, {}, watch, 260.0, 0.0, 0.0);
+  EXPECT_GE(closest_m, config.separation_m);
+  ASSERT_TRUE(takeoffs[0].climbs_from_s);
+  ASSERT_TRUE(takeoffs[1].climbs_from_s);
+  EXPECT_EQ(*takeoffs[0].climbs_from_s, 0.0);
+  EXPECT_GE(*takeoffs[1].climbs_from_s, TrafficControl::kArrivalSlotS - 1.0);
+  EXPECT_LE(*takeoffs[1].climbs_from_s, TrafficControl::kArrivalSlotS + 2.0);
+
+  // Lanes starting 100 m apart do not share a slot: both go at once.
+  TrafficControl apart(config);
+  std::vector<TakeOff> diverging = {TakeOff(1, {0.0, 0.0}, {0.0, 1500.0}),
+                                    TakeOff(2, {20.0, 0.0}, {100.0, 1500.0})};
+  EXPECT_GE(FlyTakeOffs(diverging, {}, apart, 260.0, 0.0, 0.0), config.separation_m);
+  ASSERT_TRUE(diverging[1].climbs_from_s);
+  EXPECT_EQ(*diverging[1].climbs_from_s, 0.0);
+}
+
 TEST(SeparationConfig, RefusesBadValuesNamingTheField) {
   SeparationConfig config;
   config.separation_m = -1.0;

@@ -281,8 +281,9 @@ class Server {
                     const Eigen::Vector2d& where_en_m, double now_s);
   void ResolveConflicts(double now_s);
   // The mission's start gate: whether the drone's take-off from its stand is
-  // clear of the traffic (TrafficControl::ClearToDepart); yes when take-offs are
-  // not sequenced or its stand or sortie is not known.
+  // clear of the traffic (TrafficControl::ClearToDepart); no while its drone has
+  // not been heard (or heard on the ground without its position); yes when
+  // take-offs are not sequenced, its sortie is not known or it is in the air.
   bool ClearToTakeOff(std::uint8_t vehicle, double now_s);
   // ClearToTakeOff as the mission's start gate, for one call into the mission
   // (never kept: a Server may be moved, Restore returns one).

@@ -79,6 +79,9 @@ struct TrafficSample {
   /// It holds its position where it is (a landing comes straight down over the
   /// point where it began): its reported horizontal drift is not carried on.
   bool holds_position = false;
+  /// It is taking off: it climbs where it is to route_m's first altitude (its
+  /// climb-out), then flies route_m (its sortie from the first waypoint).
+  bool departing = false;
 };
 
 enum class Resolution : std::uint8_t {
@@ -174,9 +177,18 @@ class TrafficControl {
   /// without waypoints. A clear departure is reserved:
   /// later clearances keep off it until the drone's telemetry shows it on its way
   /// at speed (or kDepartureHoldS after its clearance, unless an avoid order
-  /// holds it then). A refusal is counted
+  /// holds it then). A departure is also held while another cleared before it
+  /// is predicted to reach a first waypoint within kArrivalReachFactor times
+  /// the conflict reach of its own less than kArrivalSlotS before or after it
+  /// (neighbours whose lanes start at one corner would fly the whole way out
+  /// side by side and meet there). A refusal is counted
   /// (counts().takeoffs_held); ask again later.
   bool ClearToDepart(int vehicle, const Departure& departure, double now_s);
+  /// Arrivals at nearby first waypoints are kept this far apart, s.
+  static constexpr double kArrivalSlotS = 30.0;
+  /// First waypoints this many conflict reaches apart (39 m by default) or
+  /// nearer share their arrival slots.
+  static constexpr double kArrivalReachFactor = 3.0;
   /// The longest a start command takes from the server's decision to the
   /// vehicle's climb (a wait for its radio turn, a resend), s.
   static constexpr double kStartDelayMaxS = 8.0;
@@ -234,6 +246,11 @@ class TrafficControl {
     double cleared_s = 0.0;
   };
   std::map<int, Reserved> departures_;  // cleared take-offs not yet on their way
+  struct Arrival {
+    Eigen::Vector2d at_m = Eigen::Vector2d::Zero();  // the first waypoint (east, north)
+    double at_s = 0.0;                               // predicted there
+  };
+  std::map<int, Arrival> arrivals_;  // vehicle -> its latest cleared departure's
   // Drops the reservations older than kDepartureHoldS, but not of a drone an
   // avoid order holds.
   void LapseReservations(double now_s);
