@@ -12,9 +12,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <map>
 #include <optional>
+#include <utility>
 #include <vector>
 
 namespace fireswarm::server {
@@ -592,12 +594,20 @@ TEST(TrafficControl, ADroneOnItsWayHomeIsPredictedToStopOverItsStand) {
   EXPECT_EQ(straight.counts().conflicts, 0U);
 }
 
+// How many conflicts a fresh watch predicts at t = 0 among `drones` (receiver
+// ID, telemetry).
+std::uint64_t ConflictsPredicted(const std::vector<std::pair<int, TrafficSample>>& drones) {
+  TrafficControl watch(SeparationConfig{});
+  for (const auto& [id, sample] : drones) watch.Observe(id, sample);
+  watch.Step(0.0);
+  return watch.counts().conflicts;
+}
+
 TEST(TrafficControl, ALandingIsPredictedStraightDownWhereItIs) {
   // Drones 1 and 2 come down over stands 20 m apart, 40 m up, drone 1 with
   // 0.4 m/s of drift toward drone 2's stand in its telemetry (its hold
   // working against the wind). Carried on for the 30 s horizon, the drift
   // would bring it 12 m from drone 2: a conflict. A landing holds its point.
-  SeparationConfig config;
   TrafficSample landing;
   landing.position_m = {0.0, 0.0, 40.0};
   landing.velocity_mps = {0.4, 0.0, -1.0};
@@ -605,30 +615,17 @@ TEST(TrafficControl, ALandingIsPredictedStraightDownWhereItIs) {
   TrafficSample neighbour = landing;
   neighbour.position_m = {20.0, 0.0, 40.0};
   neighbour.velocity_mps = {0.0, 0.0, -1.0};
+  EXPECT_EQ(ConflictsPredicted({{1, landing}, {2, neighbour}}), 1U);
 
-  TrafficControl drifting(config);
-  drifting.Observe(1, landing);
-  drifting.Observe(2, neighbour);
-  drifting.Step(0.0);
-  EXPECT_EQ(drifting.counts().conflicts, 1U);
-
-  TrafficControl holding(config);
   landing.holds_position = true;
   neighbour.holds_position = true;
-  holding.Observe(1, landing);
-  holding.Observe(2, neighbour);
-  holding.Step(0.0);
-  EXPECT_EQ(holding.counts().conflicts, 0U);
+  EXPECT_EQ(ConflictsPredicted({{1, landing}, {2, neighbour}}), 0U);
 
   // Holding its point is horizontal only: a landing still comes down onto a
   // drone hovering below it.
-  TrafficControl below(config);
-  below.Observe(1, landing);
   TrafficSample hovering;
   hovering.position_m = {0.0, 0.0, 15.0};
-  below.Observe(2, hovering);
-  below.Step(0.0);
-  EXPECT_EQ(below.counts().conflicts, 1U);
+  EXPECT_EQ(ConflictsPredicted({{1, landing}, {2, hovering}}), 1U);
 }
 
 TEST(TrafficControl, ATakeOffIsPredictedUpWhereItIsThenAlongItsWayOut) {
@@ -636,7 +633,6 @@ TEST(TrafficControl, ATakeOffIsPredictedUpWhereItIsThenAlongItsWayOut) {
   // 105 m; drone 1's telemetry reports 0.5 m/s of drift toward drone 2 (its
   // hold chasing GPS noise). Carried on for the 30 s horizon, that drift
   // brings them 5 m apart: a conflict.
-  SeparationConfig config;
   TrafficSample one;
   one.position_m = {0.0, 0.0, 30.0};
   one.velocity_mps = {0.5, 0.0, 3.0};
@@ -644,11 +640,7 @@ TEST(TrafficControl, ATakeOffIsPredictedUpWhereItIsThenAlongItsWayOut) {
   TrafficSample two = one;
   two.position_m = {20.0, 0.0, 30.0};
   two.velocity_mps = {0.0, 0.0, 3.0};
-  TrafficControl drifting(config);
-  drifting.Observe(1, one);
-  drifting.Observe(2, two);
-  drifting.Step(0.0);
-  EXPECT_EQ(drifting.counts().conflicts, 1U);
+  EXPECT_EQ(ConflictsPredicted({{1, one}, {2, two}}), 1U);
 
   // As departures: each climbs where it is, then flies its way out (both
   // north, 20 m apart).
@@ -659,11 +651,7 @@ TEST(TrafficControl, ATakeOffIsPredictedUpWhereItIsThenAlongItsWayOut) {
   }
   one.route_m = {{0.0, 800.0, 105.0}};
   two.route_m = {{20.0, 800.0, 105.0}};
-  TrafficControl departing(config);
-  departing.Observe(1, one);
-  departing.Observe(2, two);
-  departing.Step(0.0);
-  EXPECT_EQ(departing.counts().conflicts, 0U);
+  EXPECT_EQ(ConflictsPredicted({{1, one}, {2, two}}), 0U);
 
   // Its way out is watched: near the top of its climb (90 m), drone 1 is 25 s
   // from a drone hovering at 105 m, 150 m north of its stand. Held over its
@@ -675,11 +663,7 @@ TEST(TrafficControl, ATakeOffIsPredictedUpWhereItIsThenAlongItsWayOut) {
     SCOPED_TRACE(along_its_way);
     TrafficSample takeoff = one;
     if (!along_its_way) takeoff.route_m.clear();
-    TrafficControl watch(config);
-    watch.Observe(1, takeoff);
-    watch.Observe(3, hovering);
-    watch.Step(0.0);
-    EXPECT_EQ(watch.counts().conflicts, along_its_way ? 1U : 0U);
+    EXPECT_EQ(ConflictsPredicted({{1, takeoff}, {3, hovering}}), along_its_way ? 1U : 0U);
   }
 }
 
