@@ -28,6 +28,9 @@ namespace {
 constexpr double kLostDroneSpeedMps = 10.0;
 constexpr double kLostDroneDescentMps = 1.0;
 constexpr double kLostDroneSlackS = 60.0;
+// A vehicle that has not heard the server for this long returns to launch by
+// itself (agents' safety.link_lost_timeout_s, its default), s.
+constexpr double kVehicleLinkLostS = 30.0;
 // A drone taking off below this is over its stand, m.
 constexpr double kJustOffTheStandM = 5.0;
 // How many waypoints ahead a drone on its route is predicted along (take-off
@@ -433,10 +436,9 @@ void Server::ResolveConflicts(double now_s) {
       continue;
     }
     const radio::Telemetry& last = *state.telemetry;
-    TrafficSample sample;
-    const Eigen::Vector2d where = LocalM(frame_, {last.lat_deg, last.lon_deg});
-    sample.position_m = {where.x(), where.y(), last.altitude_m};
-    sample.at_s = state.telemetry_time_s;
+    // As the watch last saw it (with the route ahead when it flew one).
+    TrafficSample sample = *traffic_.Last(vehicle);
+    const Eigen::Vector2d where = sample.position_m.head<2>();
     double altitude_m = last.altitude_m;
     double speed_mps = kLostDroneSpeedMps;
     // The vehicle flies home at its sortie's way home altitude (agents'
@@ -446,9 +448,12 @@ void Server::ResolveConflicts(double now_s) {
       altitude_m = sortie.back().altitude_m;
       if (sortie.back().speed_mps > 0.0) speed_mps = sortie.back().speed_mps;
     }
+    // It flies its mission on until its own lost-link return.
+    const double turns_home_s = sample.at_s + kVehicleLinkLostS;
     const double home_s = (stand->second - where).norm() / speed_mps;
-    traffic_.ExpectLost(vehicle, sample, stand->second, altitude_m, speed_mps,
-                        sample.at_s + home_s + altitude_m / kLostDroneDescentMps + kLostDroneSlackS);
+    traffic_.ExpectLost(
+        vehicle, sample, stand->second, altitude_m, speed_mps, turns_home_s,
+        turns_home_s + home_s + altitude_m / kLostDroneDescentMps + kLostDroneSlackS);
   }
   for (const AvoidOrder& order : traffic_.Step(now_s)) {
     radio::Command avoid;

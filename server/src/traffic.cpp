@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -81,6 +82,9 @@ constexpr double kMinRouteSpeedMps = 0.1;
 // holds the speed it reports there (the wind, its speed loop); slower, it is
 // speeding up to cruise.
 constexpr double kHoldsItsSpeedFraction = 0.5;
+// A drone on its route faster than this, flying away from the route's way
+// ahead, is off its route (AlongItsRoute), m/s.
+constexpr double kOffRouteSpeedMps = 2.0;
 // A take-off an order holds sets off this late: never, within any horizon.
 constexpr double kHeldDepartureS = 1e6;
 
@@ -107,7 +111,8 @@ struct Motion {
   std::optional<double> intent_m;  // where it climbs or descends to by itself
   std::optional<double> target_m;  // an ordered altitude
   double target_after_s = 0.0;     // the order starts to act this late
-  // A lost drone flying home by itself.
+  // A lost drone (it cannot be told anything), and one flying straight home.
+  bool blind = false;
   bool ghost = false;
   Eigen::Vector2d home_m = Eigen::Vector2d::Zero();
   double ghost_speed_mps = 0.0;
@@ -402,13 +407,6 @@ void TrafficControl::Forget(int vehicle) {
   ghosts_.erase(vehicle);
 }
 
-void TrafficControl::ExpectLost(int vehicle, const TrafficSample& last,
-                                const Eigen::Vector2d& home_m, double altitude_m, double speed_mps,
-                                double until_s) {
-  tracks_.erase(vehicle);
-  ghosts_[vehicle] = Ghost{last, home_m, altitude_m, speed_mps, until_s};
-}
-
 namespace {
 
 Eigen::Vector2d Horizontal(const Eigen::Vector3d& v) {
@@ -431,6 +429,38 @@ Motion DepartureMotion(int vehicle, const Departure& departure, const Eigen::Vec
   m.SetRoute(std::move(route), departure.speed_mps, m.ClimbEndS(), /*entry_mps=*/0.0);
   return m;
 }
+// Whether a drone on its route flies along it: slower than kOffRouteSpeedMps
+// (turning, hovering), or toward the route's way ahead. A drone resuming its
+// search after an investigation or a hold flies back to where it left the
+// route first (agents' rejoin), which the route does not show: it is
+// predicted straight on until it turns onto the route again.
+bool AlongItsRoute(const TrafficSample& sample) {
+  const Eigen::Vector2d velocity = Horizontal(sample.velocity_mps);
+  if (velocity.norm() < kOffRouteSpeedMps) return true;
+  Eigen::Vector2d ahead = Horizontal(sample.route_m.front() - sample.position_m);
+  if (ahead.norm() < kMinLegM && sample.route_m.size() > 1) {
+    ahead = Horizontal(sample.route_m[1] - sample.route_m.front());
+  }
+  return ahead.norm() < kMinLegM || velocity.dot(ahead) >= 0.0;
+}
+
+// A drone along its route from where `sample` reported it, `age_s` ago.
+Motion RouteMotion(int vehicle, const TrafficSample& sample, double age_s) {
+  Motion m;
+  m.vehicle = vehicle;
+  m.velocity_mps = Horizontal(sample.velocity_mps);
+  m.climb_mps = sample.velocity_mps.z();
+  m.position_m = Horizontal(sample.position_m);  // where a route starting now is
+  m.altitude_m = sample.position_m.z();
+  std::vector<Eigen::Vector3d> route = {sample.position_m};
+  route.insert(route.end(), sample.route_m.begin(), sample.route_m.end());
+  m.SetRoute(std::move(route), sample.route_speed_mps, -age_s, m.velocity_mps.norm(),
+             sample.route_stops);
+  m.position_m = m.PositionAt(0.0);
+  m.altitude_m = m.OwnAltitudeAt(0.0);
+  return m;
+}
+
 // Every drone watched, as predicted from `now_s`: a take-off cleared
 // (`departures`) as its departure goes until it is on its way at speed; a drone
 // on its route along it; others straight on; an ordered one toward its order;
@@ -461,14 +491,9 @@ std::vector<Motion> Motions(const std::map<int, TrafficSample>& tracks, const au
       m = DepartureMotion(vehicle, taking_off, m.position_m, m.altitude_m, 0.0);
       m.climb_mps = sample.velocity_mps.z();
       m.intent_m = sample.intent_altitude_m;
-    } else if (!sample.route_m.empty()) {
-      // Along its route from where it was reported, carried on to now.
-      std::vector<Eigen::Vector3d> route = {sample.position_m};
-      route.insert(route.end(), sample.route_m.begin(), sample.route_m.end());
-      m.SetRoute(std::move(route), sample.route_speed_mps, -age_s, m.velocity_mps.norm(),
-                 sample.route_stops);
-      m.position_m = m.PositionAt(0.0);
-      m.altitude_m = m.OwnAltitudeAt(0.0);
+    } else if (!sample.route_m.empty() && AlongItsRoute(sample)) {
+      m = RouteMotion(vehicle, sample, age_s);
+      m.intent_m = sample.intent_altitude_m;
     }
     const auto order = orders.find(vehicle);
     if (order != orders.end() && order->second.until_s > now_s) {
@@ -479,7 +504,24 @@ std::vector<Motion> Motions(const std::map<int, TrafficSample>& tracks, const au
   }
   for (const auto& [vehicle, ghost] : ghosts) {
     if (ghost.until_s <= now_s) continue;
+    if (!ghost.way_m.empty()) {
+      // Along its route, then home; it stops over its stand.
+      Motion m;
+      m.vehicle = vehicle;
+      m.blind = true;
+      m.velocity_mps = Horizontal(ghost.last.velocity_mps);
+      m.position_m = Horizontal(ghost.last.position_m);
+      m.altitude_m = ghost.last.position_m.z();
+      m.SetRoute(ghost.way_m, ghost.speed_mps, ghost.last.at_s - now_s, m.velocity_mps.norm(),
+                 /*stops=*/true);
+      m.velocity_mps = m.PositionAt(1.0) - m.PositionAt(0.0);
+      m.position_m = m.PositionAt(0.0);
+      m.altitude_m = m.OwnAltitudeAt(0.0);
+      out.push_back(m);
+      continue;
+    }
     Motion m;
+    m.blind = true;
     m.vehicle = vehicle;
     m.ghost = true;
     m.home_m = ghost.home_m;
@@ -578,6 +620,65 @@ bool ClearToGoOn(const Motion& self, const Departure* departure, const std::vect
 
 }  // namespace
 
+void TrafficControl::ExpectLost(int vehicle, const TrafficSample& last,
+                                const Eigen::Vector2d& home_m, double altitude_m, double speed_mps,
+                                double turns_home_s, double until_s) {
+  tracks_.erase(vehicle);
+  Ghost ghost{last, home_m, altitude_m, speed_mps, until_s, {}};
+  if (!last.route_m.empty() && turns_home_s > last.at_s) {
+    // On along its route (as the watch predicts a route) until it turns home.
+    const Motion on = RouteMotion(vehicle, last, 0.0);
+    const double turns_s = turns_home_s - last.at_s;
+    const std::size_t leg = on.LegAt(turns_s - on.route_starts_s);
+    ghost.way_m.assign(on.route.begin(), on.route.begin() + static_cast<std::ptrdiff_t>(leg) + 1);
+    const Eigen::Vector2d turn = on.PositionAt(turns_s);
+    ghost.way_m.emplace_back(turn.x(), turn.y(), on.OwnAltitudeAt(turns_s));
+    ghost.way_m.emplace_back(home_m.x(), home_m.y(), altitude_m);
+  }
+  ghosts_[vehicle] = std::move(ghost);
+}
+
+// Whether two ways out in one layer pass within `reach_m` of each other less
+// than `slot_s` apart in time, farther than `clear_m` along both from their
+// stands (nearer, every way out from one site starts within reach of its
+// neighbours', and the clearance's own look covers it). Each is flown at one
+// speed; the time offsets are tried a second apart.
+bool TrafficControl::WaysOutMeet(const Arrival& a, const Arrival& b, double reach_m, double slot_s,
+                                 double clear_m) {
+  struct Leg {
+    Eigen::Vector2d from_m;
+    Eigen::Vector2d velocity_mps;
+    double from_s = 0.0;
+    double to_s = 0.0;
+  };
+  const auto trimmed = [&](const Arrival& way) -> std::optional<Leg> {
+    const Eigen::Vector2d along = way.at_m - way.from_m;
+    const double length = along.norm();
+    const double duration = way.at_s - way.from_s;
+    if (length <= clear_m || duration <= 0.0) return std::nullopt;
+    const double cut = clear_m / length;
+    return Leg{way.from_m + cut * along, along / duration, way.from_s + cut * duration, way.at_s};
+  };
+  const std::optional<Leg> first = trimmed(a);
+  const std::optional<Leg> second = trimmed(b);
+  if (!first || !second) return false;
+  for (double offset = -slot_s; offset <= slot_s; offset += 1.0) {
+    // `first` at t against `second` at t + offset, over the times both fly.
+    const double from = std::max(first->from_s, second->from_s - offset);
+    const double to = std::min(first->to_s, second->to_s - offset);
+    if (from > to) continue;
+    const Eigen::Vector2d gap_at_from =
+        (first->from_m + first->velocity_mps * (from - first->from_s)) -
+        (second->from_m + second->velocity_mps * (from + offset - second->from_s));
+    const Eigen::Vector2d closing = first->velocity_mps - second->velocity_mps;
+    const double speed2 = closing.squaredNorm();
+    const double t =
+        speed2 < 1e-12 ? 0.0 : std::clamp(-gap_at_from.dot(closing) / speed2, 0.0, to - from);
+    if ((gap_at_from + closing * t).norm() < reach_m) return true;
+  }
+  return false;
+}
+
 void TrafficControl::LapseReservations(double now_s) {
   // A take-off held by an avoid order keeps its reservation: its release is
   // cleared as that departure (Step).
@@ -599,13 +700,24 @@ bool TrafficControl::ClearToDepart(int vehicle, const Departure& departure, doub
   // against the others' cleared before it.
   const Motion planned =
       DepartureMotion(vehicle, departure, departure.stand_m, 0.0, 0.5 * kStartDelayMaxS);
-  const Arrival arrival{departure.route_m.front().head<2>(),
-                        now_s + planned.route_starts_s + planned.route_at_s[1]};
+  Arrival arrival;
+  arrival.from_m = departure.stand_m;
+  arrival.from_s = now_s + planned.route_starts_s;
+  arrival.at_m = departure.route_m.front().head<2>();
+  arrival.at_s = arrival.from_s + planned.route_at_s[1];
+  arrival.altitude_m = departure.route_m.front().z();
+  // Nearer its stand than this, the clearance's own look covers its way out.
+  const double clear_m = kDepartureTransitS * departure.speed_mps;
   std::erase_if(arrivals_,
                 [&](const auto& entry) { return entry.second.at_s + kArrivalSlotS <= now_s; });
   for (const auto& [other, slot] : arrivals_) {
-    if (other != vehicle && (slot.at_m - arrival.at_m).norm() < kArrivalReachFactor * reach_m &&
-        std::abs(slot.at_s - arrival.at_s) < kArrivalSlotS) {
+    if (other == vehicle) continue;
+    const bool same_slot = (slot.at_m - arrival.at_m).norm() < kArrivalReachFactor * reach_m &&
+                           std::abs(slot.at_s - arrival.at_s) < kArrivalSlotS;
+    const bool same_way =
+        std::abs(slot.altitude_m - arrival.altitude_m) < 0.5 * config_.layer_m &&
+        WaysOutMeet(arrival, slot, kWayOutReachFactor * reach_m, kWayOutSlotS, clear_m);
+    if (same_slot || same_way) {
       ++counts_.takeoffs_held;
       return false;
     }
@@ -709,7 +821,7 @@ std::vector<AvoidOrder> TrafficControl::Step(double now_s) {
     for (const int mover : {p.pair.second, p.pair.first}) {
       const std::size_t m = index_of(mover);
       const std::size_t o = index_of(mover == p.pair.first ? p.pair.second : p.pair.first);
-      if (m == motions.size() || o == motions.size() || motions[m].ghost) continue;
+      if (m == motions.size() || o == motions.size() || motions[m].blind) continue;
       const Motion& self = motions[m];
       const Motion& other = motions[o];
       double other_low = other.AltitudeAt(0.0);

@@ -283,7 +283,7 @@ TEST(TrafficControl, ALostDroneFlyingHomeThroughACrowdIsAvoidedByTheOthers) {
   TrafficSample last;
   last.position_m = {0.0, -600.0, 60.0};
   last.velocity_mps = {0.0, 10.0, 0.0};
-  watch.ExpectLost(5, last, {0.0, 600.0}, 60.0, 10.0, 400.0);
+  watch.ExpectLost(5, last, {0.0, 600.0}, 60.0, 10.0, /*turns_home_s=*/0.0, 400.0);
   std::vector<Drone> crowd;
   for (int k = 0; k < 8; ++k) {
     const double north_m = -450.0 + 120.0 * k;
@@ -474,7 +474,7 @@ TEST(TrafficControl, ALostDronesWayHomeOverAStandHoldsItsTakeOff) {
   TrafficSample last;
   last.position_m = {-400.0, 0.0, 105.0};
   last.velocity_mps = {10.0, 0.0, 0.0};
-  watch.ExpectLost(9, last, {30.0, 0.0}, 105.0, 10.0, 300.0);
+  watch.ExpectLost(9, last, {30.0, 0.0}, 105.0, 10.0, /*turns_home_s=*/0.0, 300.0);
   Departure departure;
   departure.stand_m = {0.0, 0.0};
   departure.route_m = {{0.0, 600.0, 105.0}};
@@ -594,6 +594,70 @@ TEST(TrafficControl, ADroneOnItsWayHomeIsPredictedToStopOverItsStand) {
   EXPECT_EQ(straight.counts().conflicts, 0U);
 }
 
+TEST(TrafficControl, ADroneFlyingBackToWhereItLeftItsRouteIsPredictedStraightOn) {
+  // Drone 1 resumes its search after an investigation: it flies east, back to
+  // the point where it left its route, before it goes on west along the route
+  // (agents' rejoin), which the server does not know. Drone 2 flies west at
+  // the same altitude, 400 m east of it: head-on, about 20 s from now. Along
+  // its route, drone 1 would fly away from drone 2.
+  SeparationConfig config;
+  TrafficControl watch(config);
+  watch.Observe(1, OnRoute({0.0, 0.0, 135.0}, {10.0, 0.0}, {{-300.0, 0.0, 135.0}}, 10.0));
+  watch.Observe(2, OnRoute({400.0, 2.0, 135.0}, {-10.0, 0.0}, {{-600.0, 2.0, 135.0}}, 10.0));
+  watch.Step(0.0);
+  ASSERT_EQ(watch.counts().conflicts, 1U);
+  EXPECT_GT(watch.conflicts().front().time_to_closest_s, 15.0);
+
+  // Flying along its route (west, as drone 2), drone 1 is no conflict.
+  TrafficControl along(config);
+  along.Observe(1, OnRoute({0.0, 0.0, 135.0}, {-10.0, 0.0}, {{-300.0, 0.0, 135.0}}, 10.0));
+  along.Observe(2, OnRoute({400.0, 2.0, 135.0}, {-10.0, 0.0}, {{-600.0, 2.0, 135.0}}, 10.0));
+  along.Step(0.0);
+  EXPECT_EQ(along.counts().conflicts, 0U);
+}
+
+// Drone 5 lost at (0, 0), 60 m up, flying east along its route to (1000, 0);
+// its stand is at (0, -500). Drone 10 flies south at 60 m across that route at
+// x = 250 m, where drone 5 gets 25 s from now. `turns_home_s`: when the watch
+// is told drone 5 turns home. The lost drone flies on along its route for 30 s
+// (its own lost-link return), then home. The closest drone 10 comes to it;
+// `orders`: how many orders drone 10 got.
+double PastALostDrone(double turns_home_s, int& orders) {
+  SeparationConfig config;
+  TrafficControl watch(config);
+  TrafficSample last =
+      OnRoute({0.0, 0.0, 60.0}, {10.0, 0.0}, {{1000.0, 0.0, 60.0}}, /*speed_mps=*/10.0);
+  const Eigen::Vector2d stand_m(0.0, -500.0);
+  watch.ExpectLost(5, last, stand_m, 60.0, 10.0, turns_home_s, 400.0);
+  std::vector<Drone> crossing = {At(10, 250.0, 250.0, 60.0, 180.0, 10.0)};
+  Eigen::Vector3d lost = last.position_m;
+  double closest_m = std::numeric_limits<double>::infinity();
+  orders = 0;
+  for (double t = 0.0; t < 90.0; t += kDroneStepS) {
+    if (std::fmod(t + 1e-9, kTelemetryS) < kDroneStepS) ReportAll(crossing, watch, t);
+    for (const AvoidOrder& order : watch.Step(t)) {
+      EXPECT_NE(order.vehicle, 5) << "a lost drone cannot be told";
+      ++orders;
+      DeliverOrder(crossing, order, t, kWorstRadioDelayS);
+    }
+    AdvanceDrone(crossing.front(), t);
+    const Eigen::Vector2d to = t < 30.0 ? Eigen::Vector2d(1000.0, 0.0) : stand_m;
+    const Eigen::Vector2d way = to - lost.head<2>();
+    if (way.norm() > 1.0) lost.head<2>() += way.normalized() * 10.0 * kDroneStepS;
+    closest_m = std::min(closest_m, (crossing.front().position_m - lost).norm());
+  }
+  return closest_m;
+}
+
+TEST(TrafficControl, ALostDroneIsPredictedOnItsRouteUntilItsOwnReturnThenHome) {
+  int orders = 0;
+  EXPECT_GE(PastALostDrone(/*turns_home_s=*/30.0, orders), SeparationConfig{}.separation_m);
+  EXPECT_GE(orders, 1);
+  // Predicted straight home from where it was lost, it is never seen coming.
+  EXPECT_LT(PastALostDrone(/*turns_home_s=*/0.0, orders), SeparationConfig{}.separation_m);
+  EXPECT_EQ(orders, 0);
+}
+
 // How many conflicts a fresh watch predicts at t = 0 among `drones` (receiver
 // ID, telemetry).
 std::uint64_t ConflictsPredicted(const std::vector<std::pair<int, TrafficSample>>& drones) {
@@ -691,6 +755,31 @@ TEST(TrafficControl, NeighboursWhoseLanesStartTogetherTakeOffAnArrivalSlotApart)
   EXPECT_GE(FlyTakeOffs(diverging, {}, apart, 260.0, 0.0, 0.0), config.separation_m);
   ASSERT_TRUE(diverging[1].climbs_from_s);
   EXPECT_EQ(*diverging[1].climbs_from_s, 0.0);
+}
+
+TEST(TrafficControl, DeparturesWhoseWaysOutConvergeInOneLayerTakeOffASlotApart) {
+  // Stands 40 m apart; drone 2's way out (to 1 km north) converges on drone
+  // 1's (to 1.5 km north) and crosses it about 900 m out, both at 105 m. The
+  // climbs and the first 20 s are clear and their first waypoints 500 m
+  // apart; left together they would meet where the ways cross.
+  SeparationConfig config;
+  TrafficControl watch(config);
+  std::vector<TakeOff> takeoffs = {TakeOff(1, {0.0, 0.0}, {0.0, 1500.0}),
+                                   TakeOff(2, {40.0, 0.0}, {-5.0, 1000.0})};
+  EXPECT_GE(FlyTakeOffs(takeoffs, {}, watch, 200.0, 0.0, 0.0), config.separation_m);
+  ASSERT_TRUE(takeoffs[0].climbs_from_s);
+  ASSERT_TRUE(takeoffs[1].climbs_from_s);
+  EXPECT_EQ(*takeoffs[0].climbs_from_s, 0.0);
+  EXPECT_GE(*takeoffs[1].climbs_from_s, TrafficControl::kWayOutSlotS - 5.0);
+  EXPECT_LE(*takeoffs[1].climbs_from_s, TrafficControl::kWayOutSlotS + 5.0);
+
+  // The same ways in different layers: both go at once.
+  TrafficControl layered(config);
+  std::vector<TakeOff> apart = {TakeOff(1, {0.0, 0.0}, {0.0, 1500.0}),
+                                TakeOff(2, {40.0, 0.0}, {-5.0, 1000.0}, 120.0)};
+  EXPECT_GE(FlyTakeOffs(apart, {}, layered, 200.0, 0.0, 0.0), config.separation_m);
+  ASSERT_TRUE(apart[1].climbs_from_s);
+  EXPECT_EQ(*apart[1].climbs_from_s, 0.0);
 }
 
 TEST(SeparationConfig, RefusesBadValuesNamingTheField) {

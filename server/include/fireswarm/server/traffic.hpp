@@ -160,11 +160,19 @@ class TrafficControl {
   void Observe(int vehicle, const TrafficSample& sample);
   /// The drone is on the ground (or gone): no longer traffic.
   void Forget(int vehicle);
-  /// The drone is lost: from `last` it flies home to `home_m` (east, north) at
-  /// `altitude_m` and `speed_mps` and lands there; the others are kept off that
-  /// way until `until_s`.
+  /// The drone is lost: from `last` (its last telemetry, with the route ahead
+  /// when it flew one) it flies on along that route until `turns_home_s` (when
+  /// the vehicle's own lost-link return starts: it has not heard the server
+  /// for its link_lost_timeout_s), then straight home to `home_m` (east, north)
+  /// at `altitude_m` and `speed_mps`, and lands there; the others are kept off
+  /// that way until `until_s`.
   void ExpectLost(int vehicle, const TrafficSample& last, const Eigen::Vector2d& home_m,
-                  double altitude_m, double speed_mps, double until_s);
+                  double altitude_m, double speed_mps, double turns_home_s, double until_s);
+  /// The latest sample observed of a drone watched as flying, else nullptr.
+  const TrafficSample* Last(int vehicle) const {
+    const auto found = tracks_.find(vehicle);
+    return found == tracks_.end() ? nullptr : &found->second;
+  }
   /// Whether `vehicle` is watched as flying (not lost, not on the ground).
   bool Flying(int vehicle) const { return tracks_.contains(vehicle); }
   bool Lost(int vehicle) const { return ghosts_.contains(vehicle); }
@@ -181,14 +189,23 @@ class TrafficControl {
   /// is predicted to reach a first waypoint within kArrivalReachFactor times
   /// the conflict reach of its own less than kArrivalSlotS before or after it
   /// (neighbours whose lanes start at one corner would fly the whole way out
-  /// side by side and meet there). A refusal is counted
-  /// (counts().takeoffs_held); ask again later.
+  /// side by side and meet there), and while its way out (from over its stand
+  /// straight to its first waypoint, at that waypoint's altitude) is predicted
+  /// to pass within kWayOutReachFactor conflict reaches of another cleared way
+  /// out in the same layer less than kWayOutSlotS before or after it, beyond the stretch the
+  /// clearance looks at (kDepartureTransitS at its speed): two drones bound
+  /// the same way in one layer would fly it abreast, or converge on it. A
+  /// refusal is counted (counts().takeoffs_held); ask again later.
   bool ClearToDepart(int vehicle, const Departure& departure, double now_s);
   /// Arrivals at nearby first waypoints are kept this far apart, s.
   static constexpr double kArrivalSlotS = 30.0;
   /// First waypoints this many conflict reaches apart (39 m by default) or
   /// nearer share their arrival slots.
   static constexpr double kArrivalReachFactor = 3.0;
+  /// Ways out in one layer that pass this many conflict reaches apart (26 m by
+  /// default) or nearer are kept kWayOutSlotS apart in time there.
+  static constexpr double kWayOutReachFactor = 2.0;
+  static constexpr double kWayOutSlotS = 20.0;
   /// The longest a start command takes from the server's decision to the
   /// vehicle's climb (a wait for its radio turn, a resend), s.
   static constexpr double kStartDelayMaxS = 8.0;
@@ -232,6 +249,9 @@ class TrafficControl {
     double altitude_m = 0.0;
     double speed_mps = 0.0;
     double until_s = 0.0;
+    // Its way from `last` when it flew a route: the route up to where it
+    // turns home, then home at altitude_m (empty: straight home from `last`).
+    std::vector<Eigen::Vector3d> way_m;
   };
   std::map<int, Ghost> ghosts_;
   struct Held {
@@ -246,10 +266,19 @@ class TrafficControl {
     double cleared_s = 0.0;
   };
   std::map<int, Reserved> departures_;  // cleared take-offs not yet on their way
+  // A cleared departure's way out: from over its stand (at from_s, the climb
+  // done) straight to its first waypoint (at_m, at at_s), at altitude_m.
   struct Arrival {
+    Eigen::Vector2d from_m = Eigen::Vector2d::Zero();  // its stand (east, north)
+    double from_s = 0.0;
     Eigen::Vector2d at_m = Eigen::Vector2d::Zero();  // the first waypoint (east, north)
     double at_s = 0.0;                               // predicted there
+    double altitude_m = 0.0;
   };
+  // Whether two ways out in one layer pass within reach_m of each other less
+  // than slot_s apart, farther than clear_m from both stands.
+  static bool WaysOutMeet(const Arrival& a, const Arrival& b, double reach_m, double slot_s,
+                          double clear_m);
   std::map<int, Arrival> arrivals_;  // vehicle -> its latest cleared departure's
   // Drops the reservations older than kDepartureHoldS, but not of a drone an
   // avoid order holds.
