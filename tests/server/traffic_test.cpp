@@ -751,30 +751,41 @@ TEST(TrafficControl, ATakeOffIsPredictedUpWhereItIsThenAlongItsWayOut) {
   }
 }
 
+// Two take-offs asked for together from t = 0, each started as soon as it is
+// cleared: the closest they came and when each started its climb.
+struct TwoTakeOffs {
+  double closest_m = 0.0;
+  std::optional<double> first_climbs_s;
+  std::optional<double> second_climbs_s;
+};
+TwoTakeOffs FlyTwoTakeOffs(const TakeOff& first, const TakeOff& second, double duration_s) {
+  TrafficControl watch(SeparationConfig{});
+  std::vector<TakeOff> takeoffs = {first, second};
+  const double closest_m = FlyTakeOffs(takeoffs, {}, watch, duration_s, 0.0, 0.0);
+  return {closest_m, takeoffs[0].climbs_from_s, takeoffs[1].climbs_from_s};
+}
+
 TEST(TrafficControl, NeighboursWhoseLanesStartTogetherTakeOffAnArrivalSlotApart) {
   // Stands 20 m apart; lanes starting 3 m apart 1.5 km north, both reached at
   // 105 m. Their ways out converge so slowly that the climb and its first 20 s
   // are clear; left together they would fly the whole way abreast and meet at
   // the end.
-  SeparationConfig config;
-  TrafficControl watch(config);
-  std::vector<TakeOff> takeoffs = {TakeOff(1, {0.0, 0.0}, {0.0, 1500.0}),
-                                   TakeOff(2, {20.0, 0.0}, {3.0, 1500.0})};
-  const double closest_m = FlyTakeOffs(takeoffs, {}, watch, 260.0, 0.0, 0.0);
-  EXPECT_GE(closest_m, config.separation_m);
-  ASSERT_TRUE(takeoffs[0].climbs_from_s);
-  ASSERT_TRUE(takeoffs[1].climbs_from_s);
-  EXPECT_EQ(*takeoffs[0].climbs_from_s, 0.0);
-  EXPECT_GE(*takeoffs[1].climbs_from_s, TrafficControl::kArrivalSlotS - 1.0);
-  EXPECT_LE(*takeoffs[1].climbs_from_s, TrafficControl::kArrivalSlotS + 2.0);
+  const double limit_m = SeparationConfig{}.separation_m;
+  const TwoTakeOffs slot = FlyTwoTakeOffs(TakeOff(1, {0.0, 0.0}, {0.0, 1500.0}),
+                                          TakeOff(2, {20.0, 0.0}, {3.0, 1500.0}), 260.0);
+  EXPECT_GE(slot.closest_m, limit_m);
+  ASSERT_TRUE(slot.first_climbs_s);
+  ASSERT_TRUE(slot.second_climbs_s);
+  EXPECT_EQ(*slot.first_climbs_s, 0.0);
+  EXPECT_GE(*slot.second_climbs_s, TrafficControl::kArrivalSlotS - 1.0);
+  EXPECT_LE(*slot.second_climbs_s, TrafficControl::kArrivalSlotS + 2.0);
 
   // Lanes starting 100 m apart do not share a slot: both go at once.
-  TrafficControl apart(config);
-  std::vector<TakeOff> diverging = {TakeOff(1, {0.0, 0.0}, {0.0, 1500.0}),
-                                    TakeOff(2, {20.0, 0.0}, {100.0, 1500.0})};
-  EXPECT_GE(FlyTakeOffs(diverging, {}, apart, 260.0, 0.0, 0.0), config.separation_m);
-  ASSERT_TRUE(diverging[1].climbs_from_s);
-  EXPECT_EQ(*diverging[1].climbs_from_s, 0.0);
+  const TwoTakeOffs diverging = FlyTwoTakeOffs(TakeOff(1, {0.0, 0.0}, {0.0, 1500.0}),
+                                               TakeOff(2, {20.0, 0.0}, {100.0, 1500.0}), 260.0);
+  EXPECT_GE(diverging.closest_m, limit_m);
+  ASSERT_TRUE(diverging.second_climbs_s);
+  EXPECT_EQ(*diverging.second_climbs_s, 0.0);
 }
 
 TEST(TrafficControl, DeparturesWhoseWaysOutConvergeInOneLayerTakeOffASlotApart) {
@@ -782,24 +793,22 @@ TEST(TrafficControl, DeparturesWhoseWaysOutConvergeInOneLayerTakeOffASlotApart) 
   // 1's (to 1.5 km north) and crosses it about 900 m out, both at 105 m. The
   // climbs and the first 20 s are clear and their first waypoints 500 m
   // apart; left together they would meet where the ways cross.
-  SeparationConfig config;
-  TrafficControl watch(config);
-  std::vector<TakeOff> takeoffs = {TakeOff(1, {0.0, 0.0}, {0.0, 1500.0}),
-                                   TakeOff(2, {40.0, 0.0}, {-5.0, 1000.0})};
-  EXPECT_GE(FlyTakeOffs(takeoffs, {}, watch, 200.0, 0.0, 0.0), config.separation_m);
-  ASSERT_TRUE(takeoffs[0].climbs_from_s);
-  ASSERT_TRUE(takeoffs[1].climbs_from_s);
-  EXPECT_EQ(*takeoffs[0].climbs_from_s, 0.0);
-  EXPECT_GE(*takeoffs[1].climbs_from_s, TrafficControl::kWayOutSlotS - 5.0);
-  EXPECT_LE(*takeoffs[1].climbs_from_s, TrafficControl::kWayOutSlotS + 5.0);
+  const double limit_m = SeparationConfig{}.separation_m;
+  const TwoTakeOffs slot = FlyTwoTakeOffs(TakeOff(1, {0.0, 0.0}, {0.0, 1500.0}),
+                                          TakeOff(2, {40.0, 0.0}, {-5.0, 1000.0}), 200.0);
+  EXPECT_GE(slot.closest_m, limit_m);
+  ASSERT_TRUE(slot.first_climbs_s);
+  ASSERT_TRUE(slot.second_climbs_s);
+  EXPECT_EQ(*slot.first_climbs_s, 0.0);
+  EXPECT_GE(*slot.second_climbs_s, TrafficControl::kWayOutSlotS - 5.0);
+  EXPECT_LE(*slot.second_climbs_s, TrafficControl::kWayOutSlotS + 5.0);
 
   // The same ways in different layers: both go at once.
-  TrafficControl layered(config);
-  std::vector<TakeOff> apart = {TakeOff(1, {0.0, 0.0}, {0.0, 1500.0}),
-                                TakeOff(2, {40.0, 0.0}, {-5.0, 1000.0}, 120.0)};
-  EXPECT_GE(FlyTakeOffs(apart, {}, layered, 200.0, 0.0, 0.0), config.separation_m);
-  ASSERT_TRUE(apart[1].climbs_from_s);
-  EXPECT_EQ(*apart[1].climbs_from_s, 0.0);
+  const TwoTakeOffs layered = FlyTwoTakeOffs(TakeOff(1, {0.0, 0.0}, {0.0, 1500.0}),
+                                             TakeOff(2, {40.0, 0.0}, {-5.0, 1000.0}, 120.0), 200.0);
+  EXPECT_GE(layered.closest_m, limit_m);
+  ASSERT_TRUE(layered.second_climbs_s);
+  EXPECT_EQ(*layered.second_climbs_s, 0.0);
 }
 
 TEST(SeparationConfig, RefusesBadValuesNamingTheField) {

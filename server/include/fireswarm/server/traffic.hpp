@@ -192,10 +192,10 @@ class TrafficControl {
   /// side by side and meet there), and while its way out (from over its stand
   /// straight to its first waypoint, at that waypoint's altitude) is predicted
   /// to pass within kWayOutReachFactor conflict reaches of another cleared way
-  /// out in the same layer less than kWayOutSlotS before or after it, beyond the stretch the
-  /// clearance looks at (kDepartureTransitS at its speed): two drones bound
-  /// the same way in one layer would fly it abreast, or converge on it. A
-  /// refusal is counted (counts().takeoffs_held); ask again later.
+  /// out in the same layer less than kWayOutSlotS before or after it, beyond
+  /// the stretch the clearance looks at (kDepartureTransitS at its speed): two
+  /// drones bound the same way in one layer would fly it abreast, or converge
+  /// on it. A refusal is counted (counts().takeoffs_held); ask again later.
   bool ClearToDepart(int vehicle, const Departure& departure, double now_s);
   /// Arrivals at nearby first waypoints are kept this far apart, s.
   static constexpr double kArrivalSlotS = 30.0;
