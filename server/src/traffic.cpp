@@ -300,6 +300,9 @@ struct Approach {
   double distance_m = std::numeric_limits<double>::infinity();
   double at_s = 0.0;
   double window_end_s = 0.0;  // when the pair is apart horizontally again
+  // How deep and how long the pair is inside the reach: the integral of
+  // reach - distance over the times it is, m s.
+  double intrusion_m_s = 0.0;
 };
 
 // The closest the two come over [0, horizon_s] while horizontally within
@@ -331,6 +334,7 @@ Approach Closest(const Motion& a, const Motion& b, double horizon_s, double reac
     const Eigen::Vector2d dh = b.PositionAt(t) - a.PositionAt(t);
     if (dh.squaredNorm() <= reach_m * reach_m) {
       const double d = std::hypot(dh.norm(), b.AltitudeAt(t) - a.AltitudeAt(t));
+      out.intrusion_m_s += std::max(0.0, reach_m - d) * kSampleS;
       if (d < out.distance_m) {
         out.distance_m = d;
         out.at_s = t;
@@ -340,6 +344,19 @@ Approach Closest(const Motion& a, const Motion& b, double horizon_s, double reac
     if (t >= last) break;
   }
   return out;
+}
+
+// A candidate resolution's cost for a pair it leaves inside the reach: `cost`,
+// plus as much again times its intrusion (Approach) as a share of the most
+// there can be over the horizon: a brief near miss beats a long or deep one.
+// The pair in conflict costs kPairCost, so a resolution that clears it costs
+// less than any that does not; each other drone the mover would come too near
+// costs kOthersCost. A climb or descent of one layer costs 1.
+constexpr double kPairCost = 1000.0;
+constexpr double kOthersCost = 100.0;
+double Shortfall(const Approach& approach, double reach_m, double horizon_s, double cost) {
+  if (approach.distance_m >= reach_m) return 0.0;
+  return cost * (1.0 + std::min(1.0, approach.intrusion_m_s / (reach_m * horizon_s)));
 }
 
 void RequirePositive(double value, const char* field) {
@@ -850,12 +867,18 @@ std::vector<AvoidOrder> TrafficControl::Step(double now_s) {
         for (std::size_t k = 0; k < motions.size(); ++k) {
           if (k == m || Apart(boxes[m], boxes[k], reach_m)) continue;
           const Approach after = Closest(moved, motions[k], config_.horizon_s, reach_m);
-          if (after.distance_m < reach_m) score += k == o ? 1000.0 : 100.0;
+          score += Shortfall(after, reach_m, config_.horizon_s, k == o ? kPairCost : kOthersCost);
         }
         if (score < best.score) best = {mover, altitude, resolution, score};
       }
     }
-    if (best.mover == 0) continue;
+    // No order when none is predicted to do better than the drones flying on
+    // (too late for any: one told to stay level while climbing away from the
+    // other would stay in its way).
+    if (best.mover == 0 ||
+        best.score >= Shortfall(p.approach, reach_m, config_.horizon_s, kPairCost)) {
+      continue;
+    }
     // A climb or a descent is held until going back is predicted clear (the
     // release check below), kMaxOrderS at most: ended with the encounter, it
     // sent a drone flying beside the other back down beside it.

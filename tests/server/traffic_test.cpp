@@ -259,6 +259,26 @@ TEST(TrafficControl, APairFlyingSideBySideIsKeptApartUntilItsWaysPart) {
   EXPECT_EQ(watch.counts().lost_separation, 0U);
 }
 
+TEST(TrafficControl, ADroneClimbingAwayTooLateForAnyOrderIsNotStopped) {
+  // Drone 1 climbs east out of a lane end (3 m/s, to 120 m) across drone 2's
+  // lane at 75 m; first seen 3 s before they cross, predicted 12.5 m apart
+  // there: inside the reach, too late for any climb or descent. Told to stay
+  // level (the least change of all that fail, as the watch chose before,
+  // seed 73 of bench/scenarios/separation120.yaml), it would stay 5 m over the
+  // other; flying on, it passes 12.5 m apart.
+  SeparationConfig config;
+  TrafficControl watch(config);
+  Drone climbing = At(1, -29.1, 0.0, 78.5, 90.0, 9.7);
+  climbing.intent_m = 120.0;
+  climbing.climb_mps = kClimbMps;
+  std::vector<Drone> drones = {climbing, At(2, 0.0, 27.0, 75.0, 180.0, 9.0)};
+  const Outcome out = Fly(drones, watch, 20.0, /*radio_delay_s=*/0.5);
+  ASSERT_EQ(watch.counts().conflicts, 1U);
+  EXPECT_LT(watch.conflicts().front().predicted_separation_m, config.separation_m + 3.0);
+  EXPECT_EQ(out.orders, 0);
+  EXPECT_GE(out.min_separation_m, config.separation_m);
+}
+
 TEST(TrafficControl, WithoutResolutionTheConflictIsCountedAndSeparationIsLost) {
   SeparationConfig config;
   config.resolve = false;
