@@ -299,6 +299,9 @@ void Vehicle::CheckSafety(Nanos now) {
   const Nanos heard = last_heard_.value_or(mode_since_);
   if (!link_lost_ && now - heard > timeout) {
     link_lost_ = true;
+    // Home at its own layer, which the server predicts it on: an avoid order
+    // of a server it no longer hears would never be released.
+    avoid_altitude_m_.reset();
     if (mode_ != FlightMode::kReturnToLaunch) {
       ++stats_.link_lost_returns;
       EnterMode(FlightMode::kReturnToLaunch, now);

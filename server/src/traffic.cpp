@@ -657,6 +657,14 @@ void TrafficControl::ExpectLost(int vehicle, const TrafficSample& last,
     ghost.way_m.assign(on.route.begin(), on.route.begin() + static_cast<std::ptrdiff_t>(leg) + 1);
     const Eigen::Vector2d turn = on.PositionAt(turns_s);
     ghost.way_m.emplace_back(turn.x(), turn.y(), on.OwnAltitudeAt(turns_s));
+    // An order it got before it fell silent holds its altitude until it turns
+    // home (the vehicle drops it then: no release would reach it).
+    const auto order = orders_.find(vehicle);
+    if (order != orders_.end() && order->second.until_s > last.at_s) {
+      for (std::size_t k = 1; k < ghost.way_m.size(); ++k) {
+        ghost.way_m[k].z() = order->second.altitude_m;
+      }
+    }
     ghost.way_m.emplace_back(home_m.x(), home_m.y(), altitude_m);
   }
   ghosts_[vehicle] = std::move(ghost);

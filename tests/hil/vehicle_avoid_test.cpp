@@ -117,5 +117,28 @@ TEST(VehicleAvoid, WithTheLinkLostItFliesHomeAtItsMissionsWayHomeLayer) {
   EXPECT_GT(lowest_far_m, 105.0 - kHoldToleranceM);
 }
 
+TEST(VehicleAvoid, AnOrderHeldWhenTheLinkIsLostIsDroppedForTheWayHomeLayer) {
+  // Ordered to 80 m for 10 minutes, then never heard again: a release could not
+  // reach it, and the server predicts it home in its own layer.
+  Mission mission(OneVehicleWorld());
+  agents::Vehicle& vehicle = StartLane(mission);
+  RunUntilOr(mission, 200.0, [&] { return mission.Truth(1).altitude_m > 58.0; });
+  const double ordered_s = mission.simulation.time_s();
+  mission.link.server().SendCommand(1, Avoid(80.0, 600), /*urgent=*/true);
+  RunUntilOr(mission, ordered_s + 15.0,
+             [&] { return mission.Truth(1).altitude_m > 80.0 - kHoldToleranceM; });
+  ASSERT_EQ(vehicle.stats().avoid_orders, 1U);
+  mission.radio_on = false;
+  RunUntilOr(mission, ordered_s + 200.0,
+             [&] { return vehicle.mode() == FlightMode::kReturnToLaunch; });
+  ASSERT_EQ(vehicle.mode(), FlightMode::kReturnToLaunch);
+  const double turned_s = mission.simulation.time_s();
+  EXPECT_NEAR(mission.Truth(1).altitude_m, 80.0, kHoldToleranceM) << "held until it turned";
+  // 25 m at the vehicles' climb rate: well inside 20 s, far from home still.
+  mission.RunUntil(turned_s + 20.0);
+  EXPECT_EQ(vehicle.mode(), FlightMode::kReturnToLaunch);
+  EXPECT_NEAR(mission.Truth(1).altitude_m, 105.0, kHoldToleranceM);
+}
+
 }  // namespace
 }  // namespace fireswarm::hil
