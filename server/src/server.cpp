@@ -325,6 +325,7 @@ void Server::WatchTraffic(std::uint8_t vehicle, const radio::Telemetry& telemetr
   const std::span<const radio::Waypoint> sortie =
       telemetry.mode == radio::FlightMode::kSearch ? SortieFlown(mission(), vehicle)
                                                    : std::span<const radio::Waypoint>{};
+  const auto stand = stand_en_m_.find(vehicle);
   if (!sortie.empty()) {  // so the mission has the vehicle
     const DroneProgress& progress = mission_->progress(vehicle);
     if (progress.phase == DronePhase::kFlying &&
@@ -333,6 +334,18 @@ void Server::WatchTraffic(std::uint8_t vehicle, const radio::Telemetry& telemetr
       sample.route_m = RouteAhead(sortie, telemetry.waypoint_index);
       const double speed_mps = sortie[telemetry.waypoint_index].speed_mps;
       sample.route_speed_mps = speed_mps > 0.0 ? speed_mps : kLostDroneSpeedMps;
+      // Its sortie's end in sight: then home to its stand at its last
+      // waypoint's layer, where it stops (agents: a finished route returns to
+      // launch). Without it, a drone whose lane ends near the site was
+      // predicted hovering at the lane's end while it flew home across the
+      // traffic leaving the site.
+      const std::optional<double> home_m =
+          IntentAltitudeM(vehicle, radio::FlightMode::kReturnToLaunch);
+      if (telemetry.waypoint_index + sample.route_m.size() == sortie.size() &&
+          stand != stand_en_m_.end() && home_m) {
+        sample.route_m.emplace_back(stand->second.x(), stand->second.y(), *home_m);
+        sample.route_stops = true;
+      }
     }
   }
   // Taking off: straight up where it is to its climb-out altitude, then on its
@@ -356,7 +369,6 @@ void Server::WatchTraffic(std::uint8_t vehicle, const radio::Telemetry& telemetr
   // and comes down (agents' return to launch). Straight on, it would be
   // predicted flying on past its stand, and a drone crossing over the stand
   // while it comes down there would be seen only as it stops.
-  const auto stand = stand_en_m_.find(vehicle);
   if (telemetry.mode == radio::FlightMode::kReturnToLaunch && stand != stand_en_m_.end()) {
     const double altitude_m = sample.intent_altitude_m.value_or(telemetry.altitude_m);
     sample.route_m = {{stand->second.x(), stand->second.y(), altitude_m}};

@@ -224,6 +224,42 @@ TEST(Server, AStartWaitsUntilItsDroneIsHeardOnItsStand) {
   EXPECT_EQ(air.vehicle(1).starts_accepted(), 1);
 }
 
+// A drone at its sortie's last waypoint flies home to its stand next (the
+// vehicle's return to launch): the watch predicts that way, and sees drone 2,
+// hovering on it, before drone 1 has turned. Hovering at the last waypoint, as
+// a route's end was predicted before, it would see nothing.
+TEST(Server, ADroneEndingItsSortieIsPredictedOnItsWayHome) {
+  Air air(0.0);
+  Server server(ServerConfig{}, kFrame);
+  for (std::uint8_t id = 1; id <= 2; ++id) {
+    air.Add(id);
+    server.AddVehicle(id);
+  }
+  air.vehicle(1).endpoint().SetTelemetry(testing::OnItsStand(0.0, -300.0, 1'000));
+  air.vehicle(2).endpoint().SetTelemetry(testing::OnItsStand(300.0, -300.0, 1'000));
+  server.LoadMission(Missions({1, 2}));
+  ASSERT_TRUE(server.Handle({Kind::kStart, 0, {}, 0.0, "go"}, Nanos{0}));
+  air.Run(server, 60 * kSecond, [&] {
+    return air.vehicle(1).starts_accepted() == 1 && air.vehicle(2).starts_accepted() == 1;
+  });
+  ASSERT_EQ(air.vehicle(1).starts_accepted(), 1);
+  // Drone 1 at (200, 50), its last waypoint, 60 m up; drone 2 holding 60 m
+  // up halfway between there and drone 1's stand.
+  radio::Telemetry ending = Searching(200.0, 50.0, 70'000);
+  ending.waypoint_index = 2;
+  air.vehicle(1).endpoint().SetTelemetry(ending);
+  radio::Telemetry holding = Searching(100.0, -125.0, 70'000);
+  holding.mode = radio::FlightMode::kHold;
+  air.vehicle(2).endpoint().SetTelemetry(holding);
+  const auto seen = [&] {
+    return std::ranges::any_of(server.traffic().conflicts(), [](const Conflict& c) {
+      return c.vehicle_a == 1 && c.vehicle_b == 2;
+    });
+  };
+  air.Run(server, air.channel().now() + 20 * kSecond, seen);
+  EXPECT_TRUE(seen());
+}
+
 // The operator's hold interrupts an investigation: it ends at once and judges
 // nothing (the track would otherwise be rejected for not being seen again).
 TEST(Server, AHoldTakesTheDroneOffItsInvestigationWithoutAVerdict) {
