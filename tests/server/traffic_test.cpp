@@ -303,6 +303,30 @@ TEST(TrafficControl, NeighbouringLayersAreNoConflict) {
   EXPECT_GE(out.min_separation_m, config.layer_m - 1e-6);
 }
 
+TEST(TrafficControl, APairPassingSideBySideWithinTheGpsNoiseIsMovedApartVertically) {
+  // Head-on in one layer, 14 m apart sideways by their telemetry: outside the
+  // reach (10 m + 3 m) by the reported positions, but each GPS position is off
+  // by a few metres, so they may pass nearer than 10 m. Counted 3 m short
+  // horizontally, they conflict; 17 m apart they do not.
+  SeparationConfig config;
+  TrafficControl watch(config);
+  std::vector<Drone> drones = {At(1, 0, -400, 60, 0, 10), At(2, 14, 400, 60, 180, 10)};
+  const Outcome out = Fly(drones, watch, 80.0, kWorstRadioDelayS);
+  ASSERT_EQ(watch.counts().conflicts, 1U);
+  ASSERT_EQ(watch.conflicts().size(), 1U);
+  const Conflict& conflict = watch.conflicts().front();
+  EXPECT_NE(conflict.resolution, Resolution::kNone);
+  EXPECT_GE(std::abs(conflict.target_altitude_m - 60.0), config.layer_m - 1e-9);
+  EXPECT_EQ(conflict.outcome, ConflictOutcome::kResolved);
+  EXPECT_GE(out.min_separation_m, std::hypot(14.0, 0.8 * config.layer_m));
+
+  TrafficControl wider(config);
+  std::vector<Drone> apart = {At(1, 0, -400, 60, 0, 10), At(2, 17, 400, 60, 180, 10)};
+  const Outcome passed = Fly(apart, wider, 80.0, kWorstRadioDelayS);
+  EXPECT_EQ(wider.counts().conflicts, 0U);
+  EXPECT_EQ(passed.orders, 0);
+}
+
 TEST(TrafficControl, ARadioDelayBeyondTheHorizonsBudgetIsNotEnough) {
   // The same head-on pair with the order arriving only 2 s before the pair
   // would meet: the climb cannot be flown in time. This is what the horizon

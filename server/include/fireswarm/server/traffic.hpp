@@ -107,7 +107,9 @@ struct Conflict {
   int vehicle_a = 0;    ///< the lower receiver ID
   int vehicle_b = 0;
   double detected_s = 0.0;              ///< mission time
-  double predicted_separation_m = 0.0;  ///< at the closest approach, as first predicted
+  /// At the closest approach, as first predicted; its horizontal part counted
+  /// short by the allowance for GPS noise (docs/separation.md).
+  double predicted_separation_m = 0.0;
   double time_to_closest_s = 0.0;       ///< from detection
   Resolution resolution = Resolution::kNone;
   int mover = 0;  ///< the drone ordered (0: none)
