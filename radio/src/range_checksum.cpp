@@ -20,6 +20,24 @@ constexpr std::array<std::uint16_t, 256> MakeCrc16Table() {
   return table;
 }
 
+constexpr std::uint16_t Crc16StepConstexpr(const std::array<std::uint16_t, 256>& table,
+                                           std::uint16_t crc, std::uint8_t byte) {
+  return static_cast<std::uint16_t>((crc << 8) ^ table[(crc >> 8) ^ byte]);
+}
+
+constexpr std::array<std::array<std::uint16_t, 256>, 3> MakeCrc16Ahead(
+    const std::array<std::uint16_t, 256>& table) {
+  std::array<std::array<std::uint16_t, 256>, 3> ahead{};
+  for (std::size_t k = 0; k < 256; ++k) {
+    std::uint16_t crc = table[k];
+    for (std::array<std::uint16_t, 256>& row : ahead) {
+      crc = Crc16StepConstexpr(table, crc, 0);
+      row[k] = crc;
+    }
+  }
+  return ahead;
+}
+
 constexpr std::array<std::array<std::uint32_t, 16>, kMaxFrameSize + 1> MakeZeroBytesTimes() {
   std::array<std::array<std::uint32_t, 16>, kMaxFrameSize + 1> table{};
   std::uint16_t shift = 1;  // x^(8n) mod P
@@ -39,6 +57,7 @@ constexpr std::array<std::array<std::uint32_t, 16>, kMaxFrameSize + 1> MakeZeroB
 }  // namespace
 
 constexpr std::array<std::uint16_t, 256> kCrc16Table = MakeCrc16Table();
+constexpr std::array<std::array<std::uint16_t, 256>, 3> kCrc16Ahead = MakeCrc16Ahead(kCrc16Table);
 constexpr std::array<std::array<std::uint32_t, 16>, kMaxFrameSize + 1> kZeroBytesTimes =
     MakeZeroBytesTimes();
 
