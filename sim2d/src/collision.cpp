@@ -2,6 +2,7 @@
 #include <cmath>
 #include <limits>
 
+#include "box2d_units.hpp"
 #include "collision_tracker.hpp"
 
 namespace fireswarm::sim2d {
@@ -65,10 +66,10 @@ bool CollisionTracker::BandsOverlap(std::size_t a, std::size_t b) const {
 
 double CollisionTracker::RelativeSpeed(const b2Body& body_a, const b2Body& body_b, std::size_t a,
                                        std::size_t b) const {
-  const b2Vec2 dv = body_a.GetLinearVelocity() - body_b.GetLinearVelocity();
+  const Vec2 dv = MetresOf(body_a.GetLinearVelocity() - body_b.GetLinearVelocity());
   const double dz = truths_[a].climb_rate_mps - truths_[b].climb_rate_mps;
-  const double dx = static_cast<double>(dv.x);
-  const double dy = static_cast<double>(dv.y);
+  const double dx = dv.x();
+  const double dy = dv.y();
   return std::sqrt(dx * dx + dy * dy + dz * dz);
 }
 

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "battery_model.hpp"
+#include "box2d_units.hpp"
 #include "fireswarm/common/angles.hpp"
 #include "world_hash.hpp"
 #include "world_impl.hpp"
@@ -30,6 +31,9 @@ std::out_of_range UnknownVehicle(int id) {
   return std::out_of_range("no vehicle with id " + std::to_string(id));
 }
 
+// Box2D's restitution threshold in metres (its default, 1 unit/s, with units of a metre).
+constexpr double kRestitutionThresholdMps = 1.0;
+
 // A dynamic disc body with two fixtures: the solid disc (mass_kg spread over it)
 // and the near-miss sensor disc (see collision_tracker.hpp).
 b2Body* CreateVehicleBody(b2World& physics, const VehicleConfig& vehicle,
@@ -37,28 +41,30 @@ b2Body* CreateVehicleBody(b2World& physics, const VehicleConfig& vehicle,
   const MultirotorParams& params = vehicle.multirotor;
   b2BodyDef body_def;
   body_def.type = b2_dynamicBody;
-  body_def.position.Set(static_cast<float>(vehicle.launch_position_m.x()),
-                        static_cast<float>(vehicle.launch_position_m.y()));
+  body_def.position = Box2dVector(vehicle.launch_position_m);
   body_def.fixedRotation = true;  // heading is the plant's, not Box2D's
   body_def.allowSleep = false;
   body_def.userData.pointer = index;
   b2Body* body = physics.CreateBody(&body_def);
 
   b2CircleShape solid;
-  solid.m_radius = static_cast<float>(params.radius_m);
+  solid.m_radius = Box2dLength(params.radius_m);
   b2FixtureDef solid_def;
   solid_def.shape = &solid;
-  const double disc_area_m2 = std::numbers::pi * params.radius_m * params.radius_m;
-  solid_def.density = static_cast<float>(params.mass_kg / disc_area_m2);
+  // Density per square Box2D unit, so that the disc weighs mass_kg.
+  const double disc_area_units2 = std::numbers::pi * std::pow(Box2dLength(params.radius_m), 2);
+  solid_def.density = static_cast<float>(params.mass_kg / disc_area_units2);
   solid_def.friction = static_cast<float>(collision.friction);
   solid_def.restitution = static_cast<float>(collision.restitution);
+  // Box2D's default, 1 m/s, in its units (below it contacts do not bounce).
+  solid_def.restitutionThreshold = Box2dLength(kRestitutionThresholdMps);
   solid_def.filter.categoryBits = kSolidCategory;
   solid_def.filter.maskBits = kSolidCategory;
   solid_def.userData.pointer = FixtureTag(index, false);
   body->CreateFixture(&solid_def);
 
   b2CircleShape zone;
-  zone.m_radius = static_cast<float>(kNearMissExitFactor * collision.near_miss_separation_m / 2.0);
+  zone.m_radius = Box2dLength(kNearMissExitFactor * collision.near_miss_separation_m / 2.0);
   b2FixtureDef zone_def;
   zone_def.shape = &zone;
   zone_def.isSensor = true;

@@ -2,6 +2,7 @@
 // (attitude, thrust, forces) -> Box2D -> vertical axis, ground and battery, then
 // near misses and the sensors at the step's end time.
 #include "battery_model.hpp"
+#include "box2d_units.hpp"
 #include "world_impl.hpp"
 
 namespace fireswarm::sim2d {
@@ -11,12 +12,6 @@ namespace {
 constexpr int kVelocityIterations = 8;
 constexpr int kPositionIterations = 3;
 
-b2Vec2 ToB2(const Vec2& v) {
-  return b2Vec2(static_cast<float>(v.x()), static_cast<float>(v.y()));
-}
-Vec2 FromB2(const b2Vec2& v) {
-  return Vec2(static_cast<double>(v.x), static_cast<double>(v.y));
-}
 
 void Level(VehicleTruth& truth) {
   truth.roll_rad = 0.0;
@@ -82,7 +77,7 @@ void World::Impl::PrePhysics(std::size_t index) {
       vehicle.thrust_n = 0.0;
       if (truth.altitude_m > 0.0) {
         const Vec2 drag_n = HorizontalForce(params, truth, vehicle.trig, 0.0, wind_mps);
-        vehicle.body->ApplyForceToCenter(ToB2(drag_n), true);
+        vehicle.body->ApplyForceToCenter(Box2dForce(drag_n), true);
       } else {
         vehicle.body->SetLinearVelocity(b2Vec2(0.0F, 0.0F));
       }
@@ -103,7 +98,7 @@ void World::Impl::PrePhysics(std::size_t index) {
       vehicle.trig = AttitudeTrig::Of(truth);
       vehicle.thrust_n = NextThrustN(vehicle, truth);
       const Vec2 force_n = HorizontalForce(params, truth, vehicle.trig, vehicle.thrust_n, wind_mps);
-      vehicle.body->ApplyForceToCenter(ToB2(force_n), true);
+      vehicle.body->ApplyForceToCenter(Box2dForce(force_n), true);
       return;
     }
   }
@@ -114,8 +109,8 @@ void World::Impl::PostPhysics(std::size_t index) {
   if (truth.phase == FlightPhase::kLost) return;
   VehicleRuntime& vehicle = vehicles[index];
   const MultirotorParams& params = vehicle.config.multirotor;
-  truth.position_m = FromB2(vehicle.body->GetPosition());
-  truth.velocity_mps = FromB2(vehicle.body->GetLinearVelocity());
+  truth.position_m = MetresOf(vehicle.body->GetPosition());
+  truth.velocity_mps = MetresOf(vehicle.body->GetLinearVelocity());
   double impact_speed_mps = 0.0;
   if (truth.phase == FlightPhase::kFlying) {
     const Touchdown touchdown = StepVertical(params, vehicle.coefficients, vehicle.trig,
