@@ -104,6 +104,13 @@ constexpr double kHoldsItsSpeedFraction = 0.5;
 // A drone on its route faster than this, flying away from the route's way
 // ahead, is off its route (AlongItsRoute), m/s.
 constexpr double kOffRouteSpeedMps = 2.0;
+// A drone this near the waypoint it flies to is turning there, on its route,
+// whichever way it flies (the vehicles' acceptance radius, agents'
+// NavigationConfig), m. Without it, seed 93 of separation120.yaml: drone 27,
+// braking into its lane end 0.3 m past the waypoint, flew away from it and was
+// predicted straight on instead of up its next lane; a release cleared drone 28
+// to climb through its altitude there (6.4 m).
+constexpr double kTurningAtWaypointM = 10.0;
 // A take-off an order holds sets off this late: never, within any horizon.
 constexpr double kHeldDepartureS = 1e6;
 
@@ -470,18 +477,16 @@ Motion DepartureMotion(int vehicle, const Departure& departure, const Eigen::Vec
   return m;
 }
 // Whether a drone on its route flies along it: slower than kOffRouteSpeedMps
-// (turning, hovering), or toward the route's way ahead. A drone resuming its
+// (turning, hovering), within kTurningAtWaypointM of the waypoint it flies to,
+// or toward that waypoint. A drone resuming its
 // search after an investigation or a hold flies back to where it left the
 // route first (agents' rejoin), which the route does not show: it is
 // predicted straight on until it turns onto the route again.
 bool AlongItsRoute(const TrafficSample& sample) {
   const Eigen::Vector2d velocity = Horizontal(sample.velocity_mps);
   if (velocity.norm() < kOffRouteSpeedMps) return true;
-  Eigen::Vector2d ahead = Horizontal(sample.route_m.front() - sample.position_m);
-  if (ahead.norm() < kMinLegM && sample.route_m.size() > 1) {
-    ahead = Horizontal(sample.route_m[1] - sample.route_m.front());
-  }
-  return ahead.norm() < kMinLegM || velocity.dot(ahead) >= 0.0;
+  const Eigen::Vector2d ahead = Horizontal(sample.route_m.front() - sample.position_m);
+  return ahead.norm() < kTurningAtWaypointM || velocity.dot(ahead) >= 0.0;
 }
 
 // A drone along its route from where `sample` reported it, `age_s` ago.

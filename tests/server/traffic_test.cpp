@@ -680,6 +680,34 @@ TEST(TrafficControl, ADroneFlyingBackToWhereItLeftItsRouteIsPredictedStraightOn)
   EXPECT_EQ(along.counts().conflicts, 0U);
 }
 
+TEST(TrafficControl, ADroneBrakingPastItsLaneEndIsPredictedUpItsNextLane) {
+  // Drone 1 brakes into its lane end at (0, 0), 90 m up: its telemetry puts it
+  // 0.3 m past the waypoint, still flying west (the lane's way) at 4 m/s; its
+  // next lane goes north. Drone 2 flies south down that lane's line at 90 m,
+  // 250 m north. Up its next lane drone 1 meets drone 2 head-on in about 14 s;
+  // straight on west it would be 50 m away by then. (Seed 93 of
+  // separation120.yaml: taken for a drone flying back to its route.)
+  SeparationConfig config;
+  const std::vector<Eigen::Vector3d> lane_end = {
+      {0.0, 0.0, 90.0}, {0.0, 200.0, 90.0}, {-50.0, 200.0, 90.0}};
+  const TrafficSample oncoming =
+      OnRoute({0.0, 250.0, 90.0}, {0.0, -10.0}, {{0.0, -600.0, 90.0}}, 10.0);
+  TrafficControl watch(config);
+  watch.Observe(1, OnRoute({-0.3, 0.0, 90.0}, {-4.0, 0.0}, lane_end, 10.0));
+  watch.Observe(2, oncoming);
+  watch.Step(0.0);
+  ASSERT_EQ(watch.counts().conflicts, 1U);
+  EXPECT_LT(watch.conflicts().front().time_to_closest_s, 20.0);
+
+  // 30 m from the waypoint and flying away from it, a drone is flying back to
+  // where it left its route, straight on: no conflict.
+  TrafficControl back(config);
+  back.Observe(1, OnRoute({-30.0, 0.0, 90.0}, {-10.0, 0.0}, lane_end, 10.0));
+  back.Observe(2, oncoming);
+  back.Step(0.0);
+  EXPECT_EQ(back.counts().conflicts, 0U);
+}
+
 // Drone 5 lost at (0, 0), 60 m up, flying east along its route to (1000, 0);
 // its stand is at (0, -500). Drone 10 flies south at 60 m across that route at
 // x = 250 m, where drone 5 gets 25 s from now. `turns_home_s`: when the watch
