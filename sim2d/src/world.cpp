@@ -31,7 +31,7 @@ std::out_of_range UnknownVehicle(int id) {
   return std::out_of_range("no vehicle with id " + std::to_string(id));
 }
 
-// Box2D's restitution threshold in metres (its default, 1 unit/s, with units of a metre).
+// Box2D's restitution threshold, m/s: its default (1 unit/s) when a unit was a metre.
 constexpr double kRestitutionThresholdMps = 1.0;
 
 // A dynamic disc body with two fixtures: the solid disc (mass_kg spread over it)
