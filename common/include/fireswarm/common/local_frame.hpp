@@ -30,7 +30,7 @@ struct EastNorth {
 /// beside the projection, not in it (the ground's fall below the plane, d^2 / (2 R),
 /// is not one of them). Chosen over the azimuthal equidistant projection (exact
 /// distances from the origin) for speed: every simulated GPS reading and every
-/// vehicle's estimate goes through it, and this is 5 to 10 times faster (78 and
+/// vehicle's estimate goes through it, and this is 9 and 2.3 times faster (78 and
 /// 196 ns against 730 and 460 ns for ToLocal and ToGeodetic).
 class LocalFrame {
  public:
