@@ -2,10 +2,10 @@
 // through ToGeodetic and every vehicle's estimate through ToLocal, ten times a
 // second per drone. Beside them GeographicLib's azimuthal equidistant projection,
 // which LocalFrame used before 2026-12-01, for the ratio.
-#include <GeographicLib/AzimuthalEquidistant.hpp>
-#include <GeographicLib/Geodesic.hpp>
 #include <benchmark/benchmark.h>
 
+#include <GeographicLib/AzimuthalEquidistant.hpp>
+#include <GeographicLib/Geodesic.hpp>
 #include <cstddef>
 #include <vector>
 

@@ -66,8 +66,8 @@ EastNorth LocalFrame::ToLocal(LatLon point) const {
   double up_m = 0.0;
   impl_->tangent.Forward(point.lat_deg, point.lon_deg, 0.0, local.east_m, local.north_m, up_m);
   if (up_m < -kFarDepthM) {
-    const double chord_m = std::sqrt(local.east_m * local.east_m +
-                                     local.north_m * local.north_m + up_m * up_m);
+    const double chord_m =
+        std::sqrt(local.east_m * local.east_m + local.north_m * local.north_m + up_m * up_m);
     const double across_m = std::hypot(local.east_m, local.north_m);
     if (across_m > 0.0) {
       local.east_m *= chord_m / across_m;
@@ -88,8 +88,7 @@ LatLon LocalFrame::ToGeodetic(EastNorth point) const {
   // ground point by more than the tolerance (height times d / R).
   const double east2 = point.east_m * point.east_m;
   const double north2 = point.north_m * point.north_m;
-  double up_m =
-      -0.5 * (north2 / impl_->meridional_radius_m + east2 / impl_->transverse_radius_m);
+  double up_m = -0.5 * (north2 / impl_->meridional_radius_m + east2 / impl_->transverse_radius_m);
   const double slope = std::sqrt(east2 + north2) / impl_->meridional_radius_m;
   LatLon geodetic;
   double height_m = 0.0;
@@ -98,8 +97,8 @@ LatLon LocalFrame::ToGeodetic(EastNorth point) const {
   for (int i = 0; i < kMaxDepthCorrections && std::abs(height_m) * slope > kHorizontalToleranceM;
        ++i) {
     up_m -= height_m;
-    impl_->tangent.Reverse(point.east_m, point.north_m, up_m, geodetic.lat_deg,
-                           geodetic.lon_deg, height_m);
+    impl_->tangent.Reverse(point.east_m, point.north_m, up_m, geodetic.lat_deg, geodetic.lon_deg,
+                           height_m);
   }
   return geodetic;
 }

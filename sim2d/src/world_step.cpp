@@ -12,7 +12,6 @@ namespace {
 constexpr int kVelocityIterations = 8;
 constexpr int kPositionIterations = 3;
 
-
 void Level(VehicleTruth& truth) {
   truth.roll_rad = 0.0;
   truth.pitch_rad = 0.0;

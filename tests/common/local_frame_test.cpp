@@ -1,8 +1,8 @@
 #include "fireswarm/common/local_frame.hpp"
 
-#include <GeographicLib/Geodesic.hpp>
 #include <gtest/gtest.h>
 
+#include <GeographicLib/Geodesic.hpp>
 #include <cmath>
 #include <stdexcept>
 
@@ -47,10 +47,11 @@ TEST(LocalFrame, DistancesFromTheOriginAreTheGeodesicOnesToAFewMillimetresOver10
   const LocalFrame frame(kOrigin);
   const GeographicLib::Geodesic& wgs84 = GeographicLib::Geodesic::WGS84();
   for (const double distance_m : {1'000.0, 10'000.0, 20'000.0}) {
-    const double expected_excess_m = distance_m * distance_m * distance_m / (6.0 * 6.371e6 * 6.371e6);
+    const double expected_excess_m =
+        distance_m * distance_m * distance_m / (6.0 * 6.371e6 * 6.371e6);
     for (double bearing_rad = 0.0; bearing_rad < 2.0 * M_PI; bearing_rad += M_PI / 8.0) {
-      const LatLon ground =
-          frame.ToGeodetic({distance_m * std::sin(bearing_rad), distance_m * std::cos(bearing_rad)});
+      const LatLon ground = frame.ToGeodetic(
+          {distance_m * std::sin(bearing_rad), distance_m * std::cos(bearing_rad)});
       double geodesic_m = 0.0;
       double azimuth1_deg = 0.0;
       double azimuth2_deg = 0.0;

@@ -48,9 +48,9 @@ TEST(RangeChecksum, AnyRangesChecksumIsTheCrc16OfItsBytes) {
     for (std::size_t last = first; last <= first + kMaxFrameSize && last <= bytes.size();
          last += 17) {
       const std::span<const std::uint8_t> range(bytes.data() + first, last - first);
-      EXPECT_EQ(detail::ChecksumBetween(ChecksumMode::kCrc16, states[first], states[last],
-                                        last - first),
-                Crc16(range))
+      EXPECT_EQ(
+          detail::ChecksumBetween(ChecksumMode::kCrc16, states[first], states[last], last - first),
+          Crc16(range))
           << first << ".." << last;
     }
   }
