@@ -708,6 +708,40 @@ TEST(TrafficControl, ADroneBrakingPastItsLaneEndIsPredictedUpItsNextLane) {
   EXPECT_EQ(back.counts().conflicts, 0U);
 }
 
+// Two drones at one layer fly toward lane ends on one line (x = 0), 20.7 m
+// apart, and turn away from each other there: drone 1 north to (0, 0), then
+// east; drone 2 south to (0, gap_m), then west. Their routes come no nearer
+// than the gap, but each runs on past its turn (the vehicle's speed loop lags
+// its braking): seed 13 of separation120.yaml, 8.84 m. How many conflicts the
+// watch sees.
+std::size_t LaneEndsOnOneLine(double gap_m) {
+  SeparationConfig config;
+  TrafficControl watch(config);
+  watch.Observe(
+      1, OnRoute({0.0, -12.0, 90.0}, {0.0, 4.0}, {{0.0, 0.0, 90.0}, {80.0, 0.0, 90.0}}, 10.0));
+  watch.Observe(2, OnRoute({0.0, gap_m + 12.0, 90.0}, {0.0, -4.0},
+                           {{0.0, gap_m, 90.0}, {-80.0, gap_m, 90.0}}, 10.0));
+  watch.Step(0.0);
+  return watch.counts().conflicts;
+}
+
+TEST(TrafficControl, LaneEndsOnOneLineAreAConflictWhileBothRunPastTheirTurns) {
+  EXPECT_EQ(LaneEndsOnOneLine(20.7), 1U);
+  // Twice as far apart, running past their turns leaves them clear.
+  EXPECT_EQ(LaneEndsOnOneLine(41.4), 0U);
+
+  // Lane ends abreast, 20.7 m apart across the lanes, each turning away from
+  // the other: running on past a turn takes neither toward the other.
+  SeparationConfig config;
+  TrafficControl abreast(config);
+  abreast.Observe(
+      1, OnRoute({0.0, -12.0, 90.0}, {0.0, 4.0}, {{0.0, 0.0, 90.0}, {80.0, 0.0, 90.0}}, 10.0));
+  abreast.Observe(2, OnRoute({-20.7, -12.0, 90.0}, {0.0, 4.0},
+                             {{-20.7, 0.0, 90.0}, {-100.0, 0.0, 90.0}}, 10.0));
+  abreast.Step(0.0);
+  EXPECT_EQ(abreast.counts().conflicts, 0U);
+}
+
 // Drone 5 lost at (0, 0), 60 m up, flying east along its route to (1000, 0);
 // its stand is at (0, -500). Drone 10 flies south at 60 m across that route at
 // x = 250 m, where drone 5 gets 25 s from now. `turns_home_s`: when the watch
