@@ -236,15 +236,15 @@ struct Motion {
     const double cruise = std::max(speed_mps, kMinRouteSpeedMps);
     double speed = std::clamp(entry_mps, 0.0, cruise);
     for (std::size_t k = 0; k + 1 < route.size(); ++k) {
-      const bool brakes =
-          k + 2 < route.size() ? SharpTurn(route[k], route[k + 1], route[k + 2]) : stops;
-      double exit = brakes ? (k + 2 < route.size() ? kCornerSpeedMps : 0.0) : cruise;
+      const bool last = k + 2 == route.size();
+      const bool brakes = last ? stops : SharpTurn(route[k], route[k + 1], route[k + 2]);
+      double exit = brakes ? (last ? 0.0 : kCornerSpeedMps) : cruise;
       const double leg_cruise = k == 0 && speed > kHoldsItsSpeedFraction * cruise ? speed : cruise;
       exit = std::min(exit, leg_cruise);
       route_at_s[k + 1] = AddLeg(k, route_at_s[k], speed, exit, leg_cruise);
       // A turn it brakes for at the end of a leg it flies (not a turn in place).
       const Eigen::Vector2d in = (route[k + 1] - route[k]).head<2>();
-      if (brakes && k + 2 < route.size() && in.norm() >= kMinLegM) {
+      if (brakes && !last && in.norm() >= kMinLegM) {
         turns.push_back({route_at_s[k + 1], in.normalized()});
       }
       speed = exit;
@@ -402,14 +402,15 @@ Approach Closest(const Motion& a, const Motion& b, double horizon_s, double reac
   for (double t = first;; t += kSampleS) {
     t = std::min(t, last);
     const Eigen::Vector2d dh = b.PositionAt(t) - a.PositionAt(t);
+    const double dh_m = dh.norm();
     double allowance_m = kHorizontalNoiseM;
-    if (turning && dh.norm() > 1e-9) {
-      const Eigen::Vector2d a_to_b = dh / dh.norm();
+    if (turning && dh_m > 1e-9) {
+      const Eigen::Vector2d a_to_b = dh / dh_m;
       allowance_m += a.TurnAllowanceAt(t, a_to_b) + b.TurnAllowanceAt(t, -a_to_b);
     }
-    if (dh.squaredNorm() <= (reach_m + allowance_m) * (reach_m + allowance_m)) {
+    if (dh_m <= reach_m + allowance_m) {
       const double d =
-          std::hypot(std::max(0.0, dh.norm() - allowance_m), b.AltitudeAt(t) - a.AltitudeAt(t));
+          std::hypot(std::max(0.0, dh_m - allowance_m), b.AltitudeAt(t) - a.AltitudeAt(t));
       out.intrusion_m_s += std::max(0.0, reach_m - d) * kSampleS;
       if (d < out.distance_m) {
         out.distance_m = d;
