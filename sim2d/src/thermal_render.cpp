@@ -4,10 +4,8 @@
 // no ray is cast per pixel; otherwise only pixels whose own footprint touches a
 // hot thing integrate radiance over it.
 #include <algorithm>
-#include <array>
 #include <cassert>
 #include <cmath>
-#include <cstring>
 #include <span>
 #include <utility>
 #include <vector>
@@ -70,21 +68,6 @@ void SenseFixedGain(TruthC truth_c, float netd_k, float saturation_c, NormalStre
   }
 }
 
-// Beyond this many grey levels of noise on plain ground (a narrow fixed range),
-// one table lookup per pixel beats one compare pass per level.
-constexpr std::size_t kMaxUniformGreySteps = 8;
-// Pixels per block in SenseUniformGround: fixed-size loops over local arrays
-// let the compiler use whole vector instructions even at -O2.
-constexpr std::size_t kBlockPx = 64;
-
-// Grey level of one uniform noise sample: base plus the steps it reaches.
-std::uint8_t GreyOfSample(std::uint16_t sample, std::uint8_t base,
-                          std::span<const std::uint16_t> steps) {
-  int grey = base;
-  for (const std::uint16_t step : steps) grey += sample >= step ? 1 : 0;
-  return static_cast<std::uint8_t>(grey);
-}
-
 // Automatic gain: the frame's coldest to hottest pixel, widened about its middle
 // to at least min_span_k.
 std::pair<double, double> AutoGainRangeC(std::span<const float> temperatures_c, double min_span_k) {
@@ -113,9 +96,9 @@ const ThermalCamera::UniformGrey& ThermalCamera::UniformGreyFor(float ambient_c)
   uniform_grey_.steps.clear();
   for (std::size_t k = 1; k < of_index.size(); ++k) {
     assert(of_index[k] >= of_index[k - 1]);
-    // Samples from (k << kIndexShift) on select entry k or later: one step per level gained.
+    // Indices from k on select entry k or later: one step per level gained.
     for (int level = of_index[k - 1]; level < of_index[k]; ++level) {
-      uniform_grey_.steps.push_back(static_cast<std::uint16_t>(k << NormalStream::kIndexShift));
+      uniform_grey_.steps.push_back(static_cast<std::uint16_t>(k));
     }
   }
   uniform_grey_ambient_c_ = ambient_c;
@@ -124,26 +107,11 @@ const ThermalCamera::UniformGrey& ThermalCamera::UniformGreyFor(float ambient_c)
 
 void ThermalCamera::SenseUniformGround(const UniformGrey& grey, NormalStream& noise,
                                        std::span<std::uint8_t> pixels) {
-  if (grey.steps.size() > kMaxUniformGreySteps) {
+  if (grey.steps.size() > kMaxPlainGroundSteps) {
     for (std::uint8_t& pixel : pixels) pixel = grey.of_index[noise.NextIndex()];
     return;
   }
-  std::array<std::uint16_t, kBlockPx> samples{};
-  std::array<std::uint8_t, kBlockPx> block{};
-  const std::size_t blocked = pixels.size() - pixels.size() % kBlockPx;
-  for (std::size_t start = 0; start < blocked; start += kBlockPx) {
-    noise.FillUniform16(samples);
-    block.fill(grey.base);
-    for (const std::uint16_t step : grey.steps) {
-      for (std::size_t i = 0; i < kBlockPx; ++i) {
-        block[i] = static_cast<std::uint8_t>(block[i] + (samples[i] >= step ? 1 : 0));
-      }
-    }
-    std::memcpy(pixels.data() + start, block.data(), kBlockPx);
-  }
-  for (std::size_t i = blocked; i < pixels.size(); ++i) {
-    pixels[i] = GreyOfSample(noise.NextUniform16(), grey.base, grey.steps);
-  }
+  FillPlainGround(grey.base, grey.steps, noise, pixels);
 }
 
 void ThermalCamera::Render(const VehicleTruth& vehicle, const TemperatureField& field,

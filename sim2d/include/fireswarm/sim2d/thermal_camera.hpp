@@ -108,8 +108,8 @@ class ThermalCamera {
   bool RenderTruthTemperatures(const RayBasis& basis, const TemperatureField& field);
   // Fixed gain, plain ground at one temperature: the grey level of
   // ambient + NETD * z for every noise-table entry z. The level never falls as
-  // z grows, so it is also `base` plus the number of `steps` (uniform-sample
-  // thresholds, one per level gained) that a pixel's sample reaches.
+  // z grows, so it is also `base` plus the number of `steps` (table-index
+  // thresholds, one per level gained) that a pixel's index reaches.
   struct UniformGrey {
     std::vector<std::uint8_t> of_index;
     std::uint8_t base = 0;
@@ -132,7 +132,7 @@ class ThermalCamera {
   std::vector<Eigen::Vector2d> corner_ground_;
   std::vector<std::uint8_t> corner_kind_;
   HotCellMask hot_mask_;  // the frame's hot cells, rebuilt per frame with fire in view
-  // For a frame of plain ground (fixed gain): a few compares per pixel.
+  // For a frame of plain ground (fixed gain): 64 pixels' greys at a time.
   UniformGrey uniform_grey_;
   float uniform_grey_ambient_c_ = std::numeric_limits<float>::quiet_NaN();
 };
