@@ -62,10 +62,11 @@ constexpr std::array<std::uint64_t, 256> kSpread = MakeSpread();
 // every lane is at or above it so far.
 std::uint64_t LanesAtOrAbove(std::span<const std::uint64_t, NormalStream::kIndexBits> planes,
                              std::uint16_t step) {
+  const unsigned threshold = step;
   std::uint64_t at_or_above = ~std::uint64_t{0};
-  for (int bit = std::countr_zero(step); bit < NormalStream::kIndexBits; ++bit) {
+  for (int bit = std::countr_zero(threshold); bit < NormalStream::kIndexBits; ++bit) {
     const std::uint64_t plane = planes[static_cast<std::size_t>(bit)];
-    at_or_above = ((step >> bit) & 1U) != 0 ? (plane & at_or_above) : (plane | at_or_above);
+    at_or_above = ((threshold >> bit) & 1U) != 0 ? (plane & at_or_above) : (plane | at_or_above);
   }
   return at_or_above;
 }

@@ -35,7 +35,7 @@ TEST(NormalStream, IndexPlanesGiveUniformIndices) {
   for (int block = 0; block < kBlocks; ++block) {
     noise.NextIndexPlanes(planes);
     for (int lane = 0; lane < 64; ++lane) {
-      const std::uint16_t index = IndexOfLane(planes, lane);
+      const std::size_t index = IndexOfLane(planes, lane);
       ASSERT_LT(index, NormalStream::kTableSize);
       top[index >> (NormalStream::kIndexBits - 4)] += 1.0;
       bottom[index & 0xFU] += 1.0;
