@@ -73,6 +73,12 @@ std::uint64_t LanesAtOrAbove(std::span<const std::uint64_t, NormalStream::kIndex
 
 }  // namespace
 
+int LowestIndexBitRead(std::span<const std::uint16_t> index_steps) {
+  int lowest = NormalStream::kIndexBits;
+  for (const std::uint16_t step : index_steps) lowest = std::min(lowest, std::countr_zero(step));
+  return lowest;
+}
+
 void FillPlainGround(std::uint8_t base, std::span<const std::uint16_t> index_steps,
                      NormalStream& noise, std::span<std::uint8_t> pixels) {
   assert(index_steps.size() <= kMaxPlainGroundSteps);
@@ -84,12 +90,9 @@ void FillPlainGround(std::uint8_t base, std::span<const std::uint16_t> index_ste
   const std::uint64_t base_bytes = base * kEveryByte;
   std::array<std::uint64_t, NormalStream::kIndexBits> planes{};
   std::array<std::uint64_t, kWords> greys{};
-  // Bits below every step's lowest 1 decide no comparison: they are not drawn
-  // (the default 25 C ambient of the seed camera has one step, at 2048: one
-  // plane a block instead of twelve).
-  int from_bit = NormalStream::kIndexBits;
-  for (const std::uint16_t step : index_steps)
-    from_bit = std::min(from_bit, std::countr_zero(step));
+  // The seed camera over 25 C ground has one step, at 2048: one plane a block
+  // instead of twelve.
+  const int from_bit = LowestIndexBitRead(index_steps);
   for (std::size_t start = 0; start < pixels.size(); start += kLanes) {
     noise.NextIndexPlanes(planes, from_bit);
     greys.fill(base_bytes);

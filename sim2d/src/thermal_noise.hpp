@@ -93,15 +93,20 @@ class NormalStream {
 /// levels of noise than this: look each pixel's index up instead).
 inline constexpr std::size_t kMaxPlainGroundSteps = 8;
 
+/// The lowest index bit that a comparison with any of `index_steps` reads:
+/// below every step's lowest 1 no comparison depends on a bit, so those bits
+/// need not be drawn (kIndexBits when there are no steps).
+int LowestIndexBitRead(std::span<const std::uint16_t> index_steps);
+
 /// Fills `pixels` with plain ground's grey levels under fixed gain: a pixel whose
-/// noise sample has table index k reads `base` plus the number of
-/// `index_steps` at or below k. Equal, sample for sample, to looking each index
-/// up in a table whose entry k is that sum; 64 pixels at a time from
-/// NextIndexPlanes(), with no per-pixel draw or compare (the seed camera over
-/// 25 C ground: 1.8 instructions a pixel, against 6.4 for a 16-bit sample and
-/// vector compares per pixel; callgrind, `fireswarm sim-bench`). Requires index_steps ascending,
-/// each in [1, kTableSize), at most kMaxPlainGroundSteps of them, and base + index_steps.size() <=
-/// 255.
+/// noise sample has table index k reads `base` plus the number of `index_steps`
+/// at or below k. Equal, sample for sample, to looking each index up in a table
+/// whose entry k is that sum; 64 pixels at a time from NextIndexPlanes() (from
+/// LowestIndexBitRead() up), with no per-pixel draw or compare. The seed camera
+/// over 25 C ground: 1.8 instructions a pixel, against 6.4 for a 16-bit sample
+/// and vector compares per pixel (callgrind, `fireswarm sim-bench`). Requires
+/// index_steps ascending, each in [1, kTableSize), at most kMaxPlainGroundSteps
+/// of them, and base + index_steps.size() <= 255.
 void FillPlainGround(std::uint8_t base, std::span<const std::uint16_t> index_steps,
                      NormalStream& noise, std::span<std::uint8_t> pixels);
 

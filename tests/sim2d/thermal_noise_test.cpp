@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <array>
-#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -49,6 +48,14 @@ TEST(NormalStream, IndexPlanesGiveUniformIndices) {
   }
 }
 
+TEST(FillPlainGround, DrawsIndexBitsFromTheStepsLowestOneUp) {
+  EXPECT_EQ(LowestIndexBitRead({}), NormalStream::kIndexBits);
+  EXPECT_EQ(LowestIndexBitRead(std::vector<std::uint16_t>{2048}), 11);
+  EXPECT_EQ(LowestIndexBitRead(std::vector<std::uint16_t>{1024, 3072}), 10);
+  EXPECT_EQ(LowestIndexBitRead(std::vector<std::uint16_t>{1, 4095}), 0);
+  EXPECT_EQ(LowestIndexBitRead(std::vector<std::uint16_t>{3000, 3500}), 2);
+}
+
 TEST(FillPlainGround, EveryPixelReadsBasePlusTheStepsItsIndexReaches) {
   const std::vector<std::vector<std::uint16_t>> step_sets = {
       {}, {2048}, {1, 4095}, {1024, 3072}, {100, 900, 2000, 2001, 3000, 3500, 3700, 4000}};
@@ -62,8 +69,7 @@ TEST(FillPlainGround, EveryPixelReadsBasePlusTheStepsItsIndexReaches) {
       constexpr std::uint8_t kBase = 40;
       FillPlainGround(kBase, steps, filled_noise, pixels);
       // The reference draws the planes the fill needs: from the steps' lowest 1 up.
-      int from_bit = NormalStream::kIndexBits;
-      for (const std::uint16_t step : steps) from_bit = std::min(from_bit, std::countr_zero(step));
+      const int from_bit = LowestIndexBitRead(steps);
       std::array<std::uint64_t, NormalStream::kIndexBits> planes{};
       for (std::size_t i = 0; i < size; ++i) {
         if (i % 64 == 0) reference_noise.NextIndexPlanes(planes, from_bit);
