@@ -41,6 +41,7 @@ MissionManager::MissionManager(radio::ChannelRouter& scheduler,
     by_id_[vehicle] = &drones_.emplace(vehicle, DroneFor(std::move(mission))).first->second;
     next_wakeup_.reset();
   }
+  for (const auto& [vehicle, drone] : drones_) vehicles_.push_back(vehicle);
 }
 
 MissionManager::Drone MissionManager::DroneFor(DroneMission mission) {
@@ -362,6 +363,8 @@ void MissionManager::StopSorties() {
 }
 
 void MissionManager::Step(common::Nanos now, const StartGate& gate) {
+  // The server steps on every radio event: most of them find no retry due.
+  if (now < NextWakeup()) return;
   for (auto& [vehicle, drone] : drones_) {
     if (drone.progress.phase == DronePhase::kStarting && drone.retry_start_at <= now) {
       SendStart(drone, now, gate);
@@ -418,11 +421,7 @@ const DroneProgress& MissionManager::progress(std::uint8_t vehicle) const {
   return Find(vehicle).progress;
 }
 
-std::vector<std::uint8_t> MissionManager::vehicles() const {
-  std::vector<std::uint8_t> ids;
-  for (const auto& [vehicle, drone] : drones_) ids.push_back(vehicle);
-  return ids;
-}
+const std::vector<std::uint8_t>& MissionManager::vehicles() const { return vehicles_; }
 
 bool MissionManager::AllStarted() const {
   return std::ranges::none_of(drones_, [](const auto& entry) {

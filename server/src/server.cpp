@@ -195,7 +195,7 @@ void Server::LoadMission(std::vector<DroneMission> missions, double now_s,
   state_ = MissionState::kIdle;
   start_command_id_ = 0;
   handed_over_.clear();
-  journaled_phases_.clear();
+  journaled_phases_.fill(std::nullopt);
   if (coverage_) coverage_.emplace(config_.area, config_.no_fly);
   Record(now_s, std::move(loaded));
 }
@@ -292,13 +292,13 @@ void Server::OnEvent(const radio::SchedulerEvent& event, double now_s) {
     // Compared in place: this runs for every drone on every radio event.
     const DroneProgress& progress = mission_->progress(id);
     const std::vector<std::size_t>& sortie_starts = mission_->mission_of(id).sortie_starts;
-    const auto journaled = journaled_phases_.find(id);
-    if (journaled != journaled_phases_.end() && journaled->second.phase == progress.phase &&
-        journaled->second.sortie_starts == sortie_starts) {
+    std::optional<JournaledPhase>& journaled = journaled_phases_[id];
+    if (journaled && journaled->phase == progress.phase &&
+        journaled->sortie_starts == sortie_starts) {
       continue;
     }
     Record(now_s, PhaseChanged{id, progress.phase, progress.sortie, sortie_starts});
-    journaled_phases_[id] = JournaledPhase{progress.phase, sortie_starts};
+    journaled = JournaledPhase{progress.phase, sortie_starts};
   }
 }
 

@@ -97,7 +97,8 @@ void Server::Replay(const JournalEntry& entry) {
           [&](const PhaseChanged& e) {
             need_mission("phase");
             mission_->RestorePhase(e.vehicle, e.phase, e.sortie, e.sortie_starts);
-            journaled_phases_[e.vehicle] = {e.phase, mission_->mission_of(e.vehicle).sortie_starts};
+            journaled_phases_[e.vehicle] =
+                JournaledPhase{e.phase, mission_->mission_of(e.vehicle).sortie_starts};
           },
           [&](const LanesHandedOver& e) {
             need_mission("handover");

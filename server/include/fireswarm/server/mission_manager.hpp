@@ -223,7 +223,7 @@ class MissionManager {
   std::uint64_t missions_version() const { return missions_version_; }
 
   const DroneProgress& progress(std::uint8_t vehicle) const;
-  std::vector<std::uint8_t> vehicles() const;  ///< ascending
+  const std::vector<std::uint8_t>& vehicles() const;  ///< ascending
   /// True when every drone is flying, done or failed (none still uploading/starting).
   bool AllStarted() const;
   /// Fraction of all drones' waypoints passed, [0, 1] (done drones count whole).
@@ -272,6 +272,7 @@ class MissionManager {
   radio::ChannelRouter& scheduler_;
   MissionManagerConfig config_;
   std::map<std::uint8_t, Drone> drones_;
+  std::vector<std::uint8_t> vehicles_;  // drones_'s keys, ascending: fixed by the plan
   // drones_ by receiver ID, for Find in O(1): the server asks for every drone
   // on every radio event. Map nodes stay put, also when the manager moves.
   std::array<Drone*, 256> by_id_{};

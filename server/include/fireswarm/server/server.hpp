@@ -340,7 +340,8 @@ class Server {
     DronePhase phase = DronePhase::kUploading;
     std::vector<std::size_t> sortie_starts;
   };
-  std::map<std::uint8_t, JournaledPhase> journaled_phases_;
+  // By receiver ID: every radio event compares every drone's (OnEvent).
+  std::array<std::optional<JournaledPhase>, 256> journaled_phases_;
   // Where each drone was last seen on the ground with a fix, local metres: its
   // stand, which tells its launch site (RebalanceSorties).
   std::map<std::uint8_t, Eigen::Vector2d> stand_en_m_;
