@@ -17,6 +17,9 @@ namespace bg = boost::geometry;
 constexpr std::uint8_t kOutside = 0;
 constexpr std::uint8_t kUnseen = 1;
 constexpr std::uint8_t kSeen = 2;
+// Mark: a footprint edge this near parallel to the rows (|sin| or |cos| of the
+// heading) bounds no row's span; the cell test alone decides.
+constexpr double kFlatSlope = 1e-6;
 
 using Ring = Polygon::ring_type;
 
@@ -145,7 +148,26 @@ void CoverageGrid::Mark(const Eigen::Vector2d& position_en_m, double heading_rad
   const int r0 = std::max(0, row(lo_n));
   const int r1 = std::min(rows_ - 1, row(hi_n));
   for (int r = r0; r <= r1; ++r) {
-    for (int c = c0; c <= c1; ++c) {
+    // The row's centres inside the footprint lie between where the row crosses
+    // its four edges: a turned footprint fills half its bounding box. One cell
+    // more each side absorbs rounding; each cell is still tested below.
+    const double dn = min_n_ + (r + 0.5) * cell_m_ - p.y();
+    double lo_de = -std::numeric_limits<double>::infinity();
+    double hi_de = std::numeric_limits<double>::infinity();
+    // lower <= de * slope + dn * other <= upper, for de (east from the vehicle).
+    const auto within = [&](double slope, double other, double lower, double upper) {
+      if (std::abs(slope) < kFlatSlope) return;  // the row's edge crossing is far off: all of it
+      const double a = (lower - dn * other) / slope;
+      const double b = (upper - dn * other) / slope;
+      lo_de = std::max(lo_de, std::min(a, b));
+      hi_de = std::min(hi_de, std::max(a, b));
+    };
+    within(forward.x(), forward.y(), near_m, far_m);
+    within(right.x(), right.y(), -half_w, half_w);
+    if (lo_de > hi_de) continue;
+    const int first = std::max(c0, col(p.x() + lo_de) - 1);
+    const int last = std::min(c1, col(p.x() + hi_de) + 1);
+    for (int c = first; c <= last; ++c) {
       std::uint8_t& cell = state_[static_cast<std::size_t>(r) * static_cast<std::size_t>(cols_) +
                                   static_cast<std::size_t>(c)];
       if (cell != kUnseen) continue;

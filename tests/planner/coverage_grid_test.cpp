@@ -11,6 +11,7 @@
 #include <random>
 #include <vector>
 
+#include "fireswarm/common/angles.hpp"
 #include "planner/planner_test_helpers.hpp"
 
 namespace fireswarm::planner {
@@ -89,6 +90,56 @@ TEST(CoverageGrid, ATiltedCameraLooksAhead) {
   behind.Mark({50.0, 10.0}, kSouth, 20.0, Seed(), -45.0);
   EXPECT_GT(ahead.seen_cells(), 5 * behind.seen_cells());
   EXPECT_LE(behind.seen_cells(), 20U);
+}
+
+// Mark scans each row only where the row crosses the footprint. Whatever the
+// heading (the axes, a hair off them, anything), pitch, height and place (off
+// the edges too), it marks exactly the searchable cells whose centres lie in
+// the footprint, every cell of the raster tested here one by one.
+TEST(CoverageGrid, AFootprintAtAnyHeadingMarksExactlyTheCentresInIt) {
+  std::mt19937_64 rng(18);
+  std::uniform_real_distribution<double> place(-40.0, 340.0);
+  std::uniform_real_distribution<double> turn(0.0, 2.0 * std::numbers::pi);
+  std::uniform_real_distribution<double> height(3.0, 120.0);
+  std::uniform_real_distribution<double> tilt(-90.0, -20.0);
+  const std::vector<double> headings = {kNorth, kEast, kSouth, 1e-9, kEast - 1e-7, 1e-5};
+  const common::CameraModel& camera = Seed();
+  std::size_t marked_in_all = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    const auto k = static_cast<std::size_t>(trial);
+    const double heading = k < headings.size() ? headings[k] : turn(rng);
+    const Eigen::Vector2d at(place(rng), place(rng));
+    const double h = height(rng);
+    const double pitch_deg = trial % 3 == 0 ? -90.0 : tilt(rng);
+    CoverageGrid grid({Rect(0, 0, 300, 300)}, {Rect(120, 120, 160, 200)});
+    grid.Mark(at, heading, h, camera, pitch_deg);
+
+    const double depression = -pitch_deg * common::kRadPerDeg;
+    const double half_v = camera.vfov_deg * common::kRadPerDeg / 2.0;
+    const double near_m = h / std::tan(depression + half_v);
+    const double far_angle = depression - half_v;
+    const double far_m =
+        far_angle > 0.0 ? std::min(h / std::tan(far_angle), kFarEdgeCapM) : kFarEdgeCapM;
+    const double half_w = common::FootprintWidthM(camera, h, pitch_deg) / 2.0;
+    const Eigen::Vector2d forward(std::sin(heading), std::cos(heading));
+    const Eigen::Vector2d right(forward.y(), -forward.x());
+    std::size_t expected = 0;
+    for (int r = 0; r < grid.rows(); ++r) {
+      for (int c = 0; c < grid.cols(); ++c) {
+        const Eigen::Vector2d d =
+            grid.south_west_en_m() + grid.cell_m() * Eigen::Vector2d(c + 0.5, r + 0.5) - at;
+        const double along = d.dot(forward);
+        const bool inside =
+            along >= near_m && along <= far_m && std::abs(d.dot(right)) <= half_w;
+        const bool seen = inside && grid.Searchable(r, c);
+        ASSERT_EQ(grid.Seen(r, c), seen) << "trial " << trial << " cell " << r << ", " << c;
+        expected += seen ? 1 : 0;
+      }
+    }
+    EXPECT_EQ(grid.seen_cells(), expected) << "trial " << trial;
+    marked_in_all += expected;
+  }
+  EXPECT_GT(marked_in_all, 10'000U);  // the footprints did land on the raster
 }
 
 // Holes of the area and no-fly zones are not searchable: seeing them adds nothing.
