@@ -109,11 +109,14 @@ std::vector<radio::Burst> Vehicle::OnRadio(Nanos now, std::span<const std::uint8
   const radio::VehicleEndpointStats before = endpoint_.stats();
   std::vector<radio::Burst> replies = endpoint_.OnReceive(now, bytes);
   const radio::VehicleEndpointStats& after = endpoint_.stats();
-  if (after.frames_for_me != before.frames_for_me ||
-      after.broadcast_frames != before.broadcast_frames) {
-    last_heard_ = now;
-    link_lost_ = false;
+  // Bytes of frames for other vehicles only (most of a shared channel's) change
+  // nothing a record keeps: only a frame for this one or for all is handled.
+  if (after.frames_for_me == before.frames_for_me &&
+      after.broadcast_frames == before.broadcast_frames) {
+    return replies;
   }
+  last_heard_ = now;
+  link_lost_ = false;
   // Before the replies go out: what they carry (sequence numbers, reports) and
   // what the requests changed is stored by then.
   SaveEndpoint();
