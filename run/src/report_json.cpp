@@ -112,6 +112,7 @@ nlohmann::ordered_json ToJson(const Report& report) {
                      {"lost_separation", separation.lost_separation},
                      {"takeoffs_held", separation.takeoffs_held},
                      {"releases", separation.releases},
+                     {"not_taken", separation.not_taken},
                      {"closest", nullptr},
                      {"lost", Json::array()}};
   for (const SeparationOutcome::Lost& lost : separation.lost) {

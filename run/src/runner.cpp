@@ -632,6 +632,7 @@ RunResult RunScenario(const Scenario& scenario, const RunOptions& options) {
   separation.lost_separation = traffic.counts().lost_separation;
   separation.takeoffs_held = traffic.counts().takeoffs_held;
   separation.releases = traffic.counts().releases;
+  separation.not_taken = traffic.counts().not_taken;
   for (const server::Conflict& c : traffic.lost()) {
     separation.lost.push_back({c.detected_s, c.vehicle_a, c.vehicle_b, c.observed_min_separation_m,
                                c.predicted_separation_m, c.time_to_closest_s,

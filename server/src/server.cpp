@@ -280,6 +280,13 @@ void Server::OnEvent(const radio::SchedulerEvent& event, double now_s) {
     if (finished->status == radio::RequestStatus::kCompleted) {
       registry_.OnReply(finished->vehicle, now_s);
     }
+    // The watch predicts each drone holding the avoid order it last took.
+    if (const auto avoid = avoid_requests_.find(finished->id); avoid != avoid_requests_.end()) {
+      const auto* ack = finished->ack ? std::get_if<radio::CommandAck>(&*finished->ack) : nullptr;
+      traffic_.Taken(avoid->second, ack != nullptr && ack->result == radio::CommandResult::kAccepted,
+                     now_s);
+      avoid_requests_.erase(avoid);
+    }
   } else if (const auto* silent = std::get_if<radio::VehicleSilent>(&event)) {
     registry_.OnMissedReply(silent->vehicle);
   }
@@ -472,7 +479,9 @@ void Server::ResolveConflicts(double now_s) {
     avoid.type = radio::CommandType::kAvoid;
     avoid.altitude_m = order.altitude_m;
     avoid.duration_s = static_cast<std::uint16_t>(std::ceil(order.duration_s));
-    scheduler_->SendCommand(static_cast<std::uint8_t>(order.vehicle), avoid, /*urgent=*/true);
+    const radio::RequestId request =
+        scheduler_->SendCommand(static_cast<std::uint8_t>(order.vehicle), avoid, /*urgent=*/true);
+    avoid_requests_.emplace(request, order);
   }
 }
 

@@ -260,6 +260,49 @@ TEST(Server, ADroneEndingItsSortieIsPredictedOnItsWayHome) {
   EXPECT_TRUE(seen());
 }
 
+// Drones that refuse every avoid order (as when the radio gives up on one
+// after its resends): the watch does not take an order as obeyed once it hears
+// it was not, and orders again. Taken as obeyed, the first order would be
+// predicted to clear the pair, and no other would follow.
+TEST(Server, AnAvoidOrderTheDroneDidNotTakeIsGivenAgain) {
+  Air air(0.0);
+  Server server(ServerConfig{}, kFrame);
+  for (std::uint8_t id = 1; id <= 2; ++id) {
+    air.Add(id);
+    server.AddVehicle(id);
+  }
+  air.vehicle(1).endpoint().SetTelemetry(testing::OnItsStand(0.0, -300.0, 1'000));
+  air.vehicle(2).endpoint().SetTelemetry(testing::OnItsStand(300.0, -300.0, 1'000));
+  server.LoadMission(Missions({1, 2}));
+  ASSERT_TRUE(server.Handle({Kind::kStart, 0, {}, 0.0, "go"}, Nanos{0}));
+  air.Run(server, 60 * kSecond, [&] {
+    return air.vehicle(1).starts_accepted() == 1 && air.vehicle(2).starts_accepted() == 1;
+  });
+  ASSERT_EQ(air.vehicle(2).starts_accepted(), 1);
+  // Head-on at one altitude, 500 m apart at 10 m/s each: 25 s to meet.
+  const auto head_on = [&](std::uint8_t id, double north_m, double velocity_north_mps) {
+    radio::Telemetry telemetry = Searching(0.0, north_m, 70'000);
+    telemetry.mode = radio::FlightMode::kHold;
+    telemetry.velocity_north_mps = velocity_north_mps;
+    air.vehicle(id).endpoint().SetTelemetry(telemetry);
+    air.vehicle(id).refused.insert(radio::CommandType::kAvoid);
+  };
+  head_on(1, -250.0, 10.0);
+  head_on(2, 250.0, -10.0);
+  const auto avoid_orders = [&] {
+    int n = 0;
+    for (std::uint8_t id = 1; id <= 2; ++id) {
+      n += static_cast<int>(std::ranges::count_if(
+          air.vehicle(id).commands(),
+          [](const radio::Command& c) { return c.type == radio::CommandType::kAvoid; }));
+    }
+    return n;
+  };
+  air.Run(server, air.channel().now() + 20 * kSecond, [&] { return avoid_orders() >= 3; });
+  EXPECT_GE(avoid_orders(), 3);
+  EXPECT_GE(server.traffic().counts().not_taken, 2U);
+}
+
 // The operator's hold interrupts an investigation: it ends at once and judges
 // nothing (the track would otherwise be rejected for not being seen again).
 TEST(Server, AHoldTakesTheDroneOffItsInvestigationWithoutAVerdict) {

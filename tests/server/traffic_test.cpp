@@ -94,22 +94,49 @@ void AdvanceDrone(Drone& d, double t) {
       Eigen::Vector3d(d.velocity_mps.x(), d.velocity_mps.y(), d.climb_mps) * kDroneStepS;
 }
 
+// What the radio does with the orders besides delaying them.
+struct RadioFate {
+  int lost_orders = 0;    // the first this many orders never arrive
+  bool reported = false;  // the watch hears what became of each (TrafficControl::Taken)
+};
+
 // Flies `drones` for `duration_s` with the watch stepping every 0.5 s; an order
-// reaches its drone `radio_delay_s` after it is given.
+// reaches its drone `radio_delay_s` after it is given, and its fate is heard
+// then when `radio.reported`.
 Outcome Fly(std::vector<Drone>& drones, TrafficControl& watch, double duration_s,
-            double radio_delay_s) {
+            double radio_delay_s, RadioFate radio = {}) {
   Outcome out;
   double next_telemetry_s = 0.0;
+  struct Fate {
+    double at_s = 0.0;
+    AvoidOrder order;
+    bool taken = false;
+  };
+  std::vector<Fate> fates;
   for (double t = 0.0; t < duration_s; t += kDroneStepS) {
     if (t + 1e-9 >= next_telemetry_s) {
       next_telemetry_s += kTelemetryS;
       ReportAll(drones, watch, t);
     }
+    for (auto fate = fates.begin(); fate != fates.end();) {
+      if (fate->at_s > t + 1e-9) {
+        ++fate;
+        continue;
+      }
+      watch.Taken(fate->order, fate->taken, t);
+      fate = fates.erase(fate);
+    }
     for (const AvoidOrder& order : watch.Step(t)) {
       if (order.altitude_m <= 0.0) ++out.releases;
       ++out.orders;
       ++out.orders_to[order.vehicle];
-      DeliverOrder(drones, order, t, radio_delay_s);
+      const bool arrives = radio.lost_orders == 0;
+      if (arrives) {
+        DeliverOrder(drones, order, t, radio_delay_s);
+      } else {
+        --radio.lost_orders;
+      }
+      if (radio.reported) fates.push_back({t + radio_delay_s, order, arrives});
     }
     for (Drone& d : drones) {
       AdvanceDrone(d, t);
@@ -162,6 +189,70 @@ TEST(TrafficControl, HeadOnPairAtOneAltitudeIsResolvedWithOneOrder) {
   EXPECT_NE(conflict.resolution, Resolution::kNone);
   EXPECT_EQ(conflict.outcome, ConflictOutcome::kResolved);
   EXPECT_GE(std::abs(conflict.target_altitude_m - 60.0), config.layer_m - 1e-9);
+}
+
+// The radio gives up on the first order (its resends unanswered). Told so, the
+// watch predicts the drone flying on as it was and orders again in time;
+// untold, it predicts the order obeyed and the pair meets.
+TEST(TrafficControl, AnOrderTheVehicleNeverTookIsGivenAgainInTime) {
+  SeparationConfig config;
+  const std::vector<Drone> head_on = {At(1, 0, -400, 60, 0, 10), At(2, 0, 400, 60, 180, 10)};
+  TrafficControl told(config);
+  std::vector<Drone> drones = head_on;
+  const Outcome out =
+      Fly(drones, told, 80.0, kWorstRadioDelayS, {.lost_orders = 1, .reported = true});
+  EXPECT_GE(out.min_separation_m, config.separation_m);
+  EXPECT_EQ(told.counts().not_taken, 1U);
+  EXPECT_EQ(told.counts().lost_separation, 0U);
+  EXPECT_GE(out.orders - out.releases, 2);
+
+  TrafficControl untold(config);
+  drones = head_on;
+  const Outcome blind =
+      Fly(drones, untold, 80.0, kWorstRadioDelayS, {.lost_orders = 1, .reported = false});
+  EXPECT_LT(blind.min_separation_m, config.separation_m);
+  EXPECT_EQ(untold.counts().not_taken, 0U);
+}
+
+// A release that never arrives leaves the drone holding its order: the watch,
+// told so, predicts it there and lets it go again later.
+TEST(TrafficControl, AReleaseTheVehicleNeverTookIsGivenAgain) {
+  SeparationConfig config;
+  TrafficControl watch(config);
+  std::vector<Drone> drones = {At(1, 0, -400, 60, 0, 10), At(2, 0, 400, 60, 180, 10)};
+  for (Drone& d : drones) d.intent_m = 60.0;  // back to its layer when let go
+  // The order arrives; then the first release is lost.
+  double next_telemetry_s = 0.0;
+  int orders = 0;
+  int releases = 0;
+  std::optional<AvoidOrder> lost_release;
+  for (double t = 0.0; t < 120.0; t += kDroneStepS) {
+    if (t + 1e-9 >= next_telemetry_s) {
+      next_telemetry_s += kTelemetryS;
+      ReportAll(drones, watch, t);
+    }
+    for (const AvoidOrder& order : watch.Step(t)) {
+      if (order.altitude_m > 0.0) {
+        ++orders;
+        DeliverOrder(drones, order, t, 1.0);
+        watch.Taken(order, true, t);
+      } else if (++releases == 1) {
+        lost_release = order;
+        watch.Taken(order, false, t);
+      } else {
+        DeliverOrder(drones, order, t, 1.0);
+        watch.Taken(order, true, t);
+      }
+    }
+    for (Drone& d : drones) AdvanceDrone(d, t);
+  }
+  EXPECT_EQ(orders, 1);
+  ASSERT_TRUE(lost_release.has_value());
+  EXPECT_EQ(releases, 2);
+  EXPECT_EQ(watch.counts().not_taken, 1U);
+  // The drone the second release reached flies back to its own altitude.
+  EXPECT_NEAR(drones[static_cast<std::size_t>(lost_release->vehicle - 1)].position_m.z(), 60.0,
+              0.5);
 }
 
 TEST(TrafficControl, CrossingPairAtOneAltitudeIsResolved) {

@@ -113,6 +113,7 @@ struct SeparationOutcome {
   std::uint64_t lost_separation = 0;  ///< passed closer than the limit, as reported
   std::uint64_t takeoffs_held = 0;    ///< take-off clearances refused (asked again)
   std::uint64_t releases = 0;         ///< level orders ended once their conflict closed
+  std::uint64_t not_taken = 0;        ///< orders and releases the vehicle never acknowledged
   std::optional<ClosestApproach> closest;  ///< where min_separation_m was sampled
   /// The conflicts that lost separation: when detected, the pair, the closest
   /// they were reported, what was first predicted (how close, how soon: a late

@@ -328,6 +328,8 @@ class Server {
   std::optional<MissionManager> mission_;
   std::optional<planner::CoverageGrid> coverage_;  // with ServerConfig::area only
   TrafficControl traffic_;
+  // Avoid orders on the radio, by request: what became of each goes to traffic_.
+  std::map<radio::RequestId, AvoidOrder> avoid_requests_;
   std::optional<AirspacePlan> airspace_;
   MissionState state_ = MissionState::kIdle;
   double mission_started_s_ = 0.0;

@@ -127,9 +127,10 @@ struct Conflict {
 /// refuses a duration of 0, so a release carries 1 s).
 struct AvoidOrder {
   int vehicle = 0;
-  double altitude_m = 0.0;
+  double altitude_m = 0.0;  ///< 0: a release (the standing order ends)
   double duration_s = 0.0;
   std::int32_t conflict_id = 0;
+  bool level = false;  ///< Resolution::kLevel: held where it is until released
 };
 
 /// A take-off the server is about to order: from its stand the drone climbs
@@ -151,6 +152,8 @@ struct TrafficCounts {
   std::uint64_t takeoffs_held = 0;  ///< take-off clearances refused (asked again later)
   /// Level orders ended early (AvoidOrder with altitude 0): the conflict had closed.
   std::uint64_t releases = 0;
+  /// Orders and releases the vehicle never took (TrafficControl::Taken).
+  std::uint64_t not_taken = 0;
 };
 
 class TrafficControl {
@@ -225,6 +228,16 @@ class TrafficControl {
   /// Runs at most every kStepS (earlier calls return nothing).
   std::vector<AvoidOrder> Step(double now_s);
   static constexpr double kStepS = 0.5;
+  /// What became of `order` (one Step() returned) at `now_s`: the vehicle
+  /// acknowledged it (`taken`), or not (the radio gave up after its resends,
+  /// or the vehicle refused it). The watch predicts each drone holding the
+  /// order it last took: one not taken is dropped (the drone flies on as it
+  /// did, and its conflicts may be resolved again at once, not kReorderS
+  /// later); after a release not taken the drone still holds its order until
+  /// the release check lets it go again. Without these reports the watch
+  /// takes every order as delivered.
+  void Taken(const AvoidOrder& order, bool taken, double now_s);
+
   /// Whether Step(now_s) would run (kStepS since the last that did).
   bool Due(double now_s) const { return now_s >= last_step_s_ + kStepS; }
 
@@ -286,6 +299,7 @@ class TrafficControl {
   // avoid order holds.
   void LapseReservations(double now_s);
   std::map<int, Held> orders_;  // vehicle -> its standing avoid order
+  std::map<int, Held> taken_;   // vehicle -> the order it last acknowledged
   // pair -> its conflict's index among every conflict ever opened (id - 1)
   std::map<std::pair<int, int>, std::size_t> open_;
   std::map<std::pair<int, int>, double> last_order_s_;  // pair -> when it was last resolved
