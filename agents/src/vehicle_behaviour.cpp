@@ -133,9 +133,17 @@ void Vehicle::EnterMode(FlightMode mode, Nanos now) {
       // Back to the point it left the route first: straight to the next waypoint
       // would cut the rest of the lane it was sweeping, unseen.
       if (rejoin_at_) {
+        // At the altitude of the waypoint it resumes (its lane's layer), the
+        // one it flies as soon as it is back: the server predicts it so.
+        // Where an investigation or an avoid order happened to leave it (seed
+        // 32 of bench/scenarios/separation120.yaml: 82.9 m, halfway down to
+        // its lane at 75 m), it flew back 7.6 m under drone 21's layer.
+        const std::vector<RoutePoint> route =
+            RouteOf(*missions_.complete(), Param(ParamId::kTakeoffAltitudeM));
         RoutePoint rejoin;
         rejoin.position = *rejoin_at_;
-        rejoin.altitude_m = state.altitude_m;
+        rejoin.altitude_m = resume_index_ < route.size() ? route[resume_index_].altitude_m
+                                                         : state.altitude_m;
         StartRoute({rejoin}, 0);
         rejoining_ = true;
       } else {

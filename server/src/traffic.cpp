@@ -635,6 +635,12 @@ std::vector<Motion> Motions(const std::map<int, TrafficSample>& tracks, const au
     } else if (!sample.route_m.empty() && AlongItsRoute(sample)) {
       m = RouteMotion(vehicle, sample, age_s);
       m.intent_m = sample.intent_altitude_m;
+    } else if (!sample.route_m.empty() && !m.intent_m) {
+      // Flying back to where it left its route: straight on, at the altitude
+      // of the waypoint it resumes (agents' rejoin).
+      m.intent_m = sample.route_m.front().z();
+      m.altitude_m = sample.position_m.z();
+      m.altitude_m = std::max(0.0, m.SelfAltitudeAt(age_s));
     }
     const auto order = orders.find(vehicle);
     if (order != orders.end() && order->second.until_s > now_s) {

@@ -28,15 +28,17 @@ void StartLaneNorth(Mission& mission, double length_m) {
                                WaypointAt(mission, Vec2(0.0, length_m), 60.0)});
 }
 
-// Orders vehicle 1 to circle `point` (local m) for `duration_s`; radius and
-// altitude 0: its own loiter radius and altitude.
-void SendInvestigate(Mission& mission, const Vec2& point, std::uint16_t duration_s) {
+// Orders vehicle 1 to circle `point` (local m) for `duration_s`; radius 0: its
+// own loiter radius; altitude 0: its own altitude.
+void SendInvestigate(Mission& mission, const Vec2& point, std::uint16_t duration_s,
+                     double altitude_m = 0.0) {
   const common::LatLon target = mission.ToLatLon(point);
   radio::Command investigate;
   investigate.type = radio::CommandType::kInvestigate;
   investigate.lat_deg = target.lat_deg;
   investigate.lon_deg = target.lon_deg;
   investigate.duration_s = duration_s;
+  investigate.altitude_m = altitude_m;
   mission.link.server().SendCommand(1, investigate);
 }
 
@@ -170,6 +172,36 @@ TEST(Investigate, TheSearchResumesWhereItLeftTheLane) {
   std::printf("resumed lane: every point of it flown within %.1f m\n", worst_m);
   EXPECT_LT(worst_m, 10.0);
   EXPECT_GT(lowest_north_m, left_at.y() - 30.0);
+}
+
+// The way back to the lane is flown at the lane's altitude, not at the
+// investigation's (nor wherever the vehicle was when the investigation ended):
+// the server predicts a drone flying back to its route at the altitude of the
+// waypoint it resumes, and its neighbours' layers are kept from that one.
+TEST(Investigate, TheWayBackToTheLaneIsFlownAtTheLanesAltitude) {
+  sim2d::SimulationConfig config = OneVehicleWorld();
+  Mission mission(config);
+  agents::Vehicle& vehicle = mission.AddVehicle(agents::VehicleConfig{});
+  StartLaneNorth(mission, 1200.0);
+  RunUntilOr(mission, 200.0, [&] { return mission.Truth(1).position_m.y() > 300.0; });
+  ASSERT_EQ(vehicle.mode(), FlightMode::kSearch);
+
+  // 300 m east of the lane at 90 m (the lane: 60 m), 60 s around it.
+  SendInvestigate(mission, Vec2(300.0, mission.Truth(1).position_m.y()), 60, 90.0);
+  RunUntilOr(mission, mission.simulation.time_s() + 90.0, [&] {
+    return vehicle.mode() == FlightMode::kInvestigate && mission.Truth(1).altitude_m > 85.0;
+  });
+  ASSERT_GT(mission.Truth(1).altitude_m, 85.0);
+  RunUntilOr(mission, mission.simulation.time_s() + 90.0,
+             [&] { return vehicle.mode() == FlightMode::kSearch; });
+  ASSERT_EQ(vehicle.mode(), FlightMode::kSearch);
+  ASSERT_GT(mission.Truth(1).position_m.x(), 100.0);  // still out at its circle
+
+  // Halfway back to the lane it flies the lane's altitude already.
+  RunUntilOr(mission, mission.simulation.time_s() + 120.0,
+             [&] { return mission.Truth(1).position_m.x() < 60.0; });
+  ASSERT_LT(mission.Truth(1).position_m.x(), 60.0);
+  EXPECT_NEAR(mission.Truth(1).altitude_m, 60.0, 3.0);
 }
 
 }  // namespace

@@ -771,6 +771,26 @@ TEST(TrafficControl, ADroneFlyingBackToWhereItLeftItsRouteIsPredictedStraightOn)
   EXPECT_EQ(along.counts().conflicts, 0U);
 }
 
+// On its way back to where it left its route, a drone climbs or descends to
+// the altitude of the waypoint it resumes (agents' rejoin): drone 1, flying
+// back east at 120 m to a lane at 135 m, meets drone 2 flying west at 135 m,
+// not drone 3 flying west at 120 m.
+TEST(TrafficControl, ADroneFlyingBackToItsRouteIsPredictedAtTheRoutesAltitude) {
+  SeparationConfig config;
+  TrafficControl watch(config);
+  watch.Observe(1, OnRoute({0.0, 0.0, 120.0}, {10.0, 0.0}, {{-300.0, 0.0, 135.0}}, 10.0));
+  watch.Observe(2, OnRoute({400.0, 2.0, 135.0}, {-10.0, 0.0}, {{-600.0, 2.0, 135.0}}, 10.0));
+  watch.Step(0.0);
+  ASSERT_EQ(watch.counts().conflicts, 1U);
+  EXPECT_EQ(watch.conflicts().front().vehicle_b, 2);
+
+  TrafficControl level(config);
+  level.Observe(1, OnRoute({0.0, 0.0, 120.0}, {10.0, 0.0}, {{-300.0, 0.0, 135.0}}, 10.0));
+  level.Observe(3, OnRoute({400.0, 2.0, 120.0}, {-10.0, 0.0}, {{-600.0, 2.0, 120.0}}, 10.0));
+  level.Step(0.0);
+  EXPECT_EQ(level.counts().conflicts, 0U);
+}
+
 TEST(TrafficControl, ADroneBrakingPastItsLaneEndIsPredictedUpItsNextLane) {
   // Drone 1 brakes into its lane end at (0, 0), 90 m up: its telemetry puts it
   // 0.3 m past the waypoint, still flying west (the lane's way) at 4 m/s; its
