@@ -33,6 +33,13 @@ constexpr double kPredictionMarginM = 3.0;
 // the air a run (16.45), makespan 754 s (730); with 5 m: 96 seeds, but
 // 16.99 h and 795 s.
 constexpr double kHorizontalNoiseM = 3.0;
+// A resolution clears its pair only if it leaves them this much more than the
+// conflict reach apart: a level order that held a landing drone where it was
+// left it 13.4 m over a transit layer, the reach plus 0.4 m, and its altitude
+// hold (1 m under its target) and the two barometers took the rest (seed 58 of
+// bench/scenarios/separation120.yaml: drones 64 and 51, 9.57 m). A climb or
+// descent to a layer past the other's (layer_m, 15 m) still clears it, m.
+constexpr double kResolvedMarginM = 2.0;
 // The time an order needs before the mover answers it: the telemetry's age at
 // 250 drones on one channel (about 3 s), the order's wait for its turn and the
 // vehicle's altitude loop; the prediction of a candidate resolution starts its
@@ -1002,8 +1009,9 @@ std::vector<AvoidOrder> TrafficControl::Step(double now_s) {
         double score = std::abs(altitude - self.altitude_m) / config_.layer_m;
         for (std::size_t k = 0; k < motions.size(); ++k) {
           if (k == m || Apart(boxes[m], boxes[k], reach_m)) continue;
-          const Approach after = Closest(moved, motions[k], config_.horizon_s, reach_m);
-          score += Shortfall(after, reach_m, config_.horizon_s, k == o ? kPairCost : kOthersCost);
+          const double k_reach_m = k == o ? reach_m + kResolvedMarginM : reach_m;
+          const Approach after = Closest(moved, motions[k], config_.horizon_s, k_reach_m);
+          score += Shortfall(after, k_reach_m, config_.horizon_s, k == o ? kPairCost : kOthersCost);
         }
         if (score < best.score) best = {mover, altitude, resolution, score};
       }

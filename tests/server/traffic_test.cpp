@@ -255,6 +255,31 @@ TEST(TrafficControl, AReleaseTheVehicleNeverTookIsGivenAgain) {
               0.5);
 }
 
+// Drone 1 comes down to land at 1 m/s from 103.4 m; drone 2 flies toward its
+// point at 90 m. Held level where it is, drone 1 would stay 13.4 m over drone
+// 2: the conflict reach (13 m) and no more, which its altitude hold and the
+// two barometers eat (seed 58 of separation120.yaml: 9.57 m by the truth). It
+// is told to climb past drone 2's layer instead.
+TEST(TrafficControl, AResolutionLeavesThePairMoreThanTheReachApart) {
+  SeparationConfig config;
+  TrafficControl watch(config);
+  TrafficSample landing;
+  landing.position_m = {0.0, 0.0, 103.4};
+  landing.velocity_mps = {0.0, 0.0, -1.0};
+  landing.intent_altitude_m = 0.0;
+  landing.holds_position = true;
+  watch.Observe(1, landing);
+  TrafficSample crossing;
+  crossing.position_m = {-200.0, 0.0, 90.0};
+  crossing.velocity_mps = {10.0, 0.0, 0.0};
+  watch.Observe(2, crossing);
+  const std::vector<AvoidOrder> orders = watch.Step(0.0);
+  ASSERT_EQ(orders.size(), 1U);
+  EXPECT_EQ(orders[0].vehicle, 1);
+  EXPECT_FALSE(orders[0].level);
+  EXPECT_GE(orders[0].altitude_m, 90.0 + config.layer_m - 1e-9);
+}
+
 TEST(TrafficControl, CrossingPairAtOneAltitudeIsResolved) {
   SeparationConfig config;
   TrafficControl watch(config);
