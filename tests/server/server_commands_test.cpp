@@ -224,13 +224,8 @@ TEST(Server, AStartWaitsUntilItsDroneIsHeardOnItsStand) {
   EXPECT_EQ(air.vehicle(1).starts_accepted(), 1);
 }
 
-// A drone at its sortie's last waypoint flies home to its stand next (the
-// vehicle's return to launch): the watch predicts that way, and sees drone 2,
-// hovering on it, before drone 1 has turned. Hovering at the last waypoint, as
-// a route's end was predicted before, it would see nothing.
-TEST(Server, ADroneEndingItsSortieIsPredictedOnItsWayHome) {
-  Air air(0.0);
-  Server server(ServerConfig{}, kFrame);
+// Drones 1 and 2, heard on their stands 300 m apart, started on their missions.
+void StartTwoFromTheirStands(Air& air, Server& server) {
   for (std::uint8_t id = 1; id <= 2; ++id) {
     air.Add(id);
     server.AddVehicle(id);
@@ -242,7 +237,18 @@ TEST(Server, ADroneEndingItsSortieIsPredictedOnItsWayHome) {
   air.Run(server, 60 * kSecond, [&] {
     return air.vehicle(1).starts_accepted() == 1 && air.vehicle(2).starts_accepted() == 1;
   });
+}
+
+// A drone at its sortie's last waypoint flies home to its stand next (the
+// vehicle's return to launch): the watch predicts that way, and sees drone 2,
+// hovering on it, before drone 1 has turned. Hovering at the last waypoint, as
+// a route's end was predicted before, it would see nothing.
+TEST(Server, ADroneEndingItsSortieIsPredictedOnItsWayHome) {
+  Air air(0.0);
+  Server server(ServerConfig{}, kFrame);
+  StartTwoFromTheirStands(air, server);
   ASSERT_EQ(air.vehicle(1).starts_accepted(), 1);
+  ASSERT_EQ(air.vehicle(2).starts_accepted(), 1);
   // Drone 1 at (200, 50), its last waypoint, 60 m up; drone 2 holding 60 m
   // up halfway between there and drone 1's stand.
   radio::Telemetry ending = Searching(200.0, 50.0, 70'000);
@@ -267,17 +273,8 @@ TEST(Server, ADroneEndingItsSortieIsPredictedOnItsWayHome) {
 TEST(Server, AnAvoidOrderTheDroneDidNotTakeIsGivenAgain) {
   Air air(0.0);
   Server server(ServerConfig{}, kFrame);
-  for (std::uint8_t id = 1; id <= 2; ++id) {
-    air.Add(id);
-    server.AddVehicle(id);
-  }
-  air.vehicle(1).endpoint().SetTelemetry(testing::OnItsStand(0.0, -300.0, 1'000));
-  air.vehicle(2).endpoint().SetTelemetry(testing::OnItsStand(300.0, -300.0, 1'000));
-  server.LoadMission(Missions({1, 2}));
-  ASSERT_TRUE(server.Handle({Kind::kStart, 0, {}, 0.0, "go"}, Nanos{0}));
-  air.Run(server, 60 * kSecond, [&] {
-    return air.vehicle(1).starts_accepted() == 1 && air.vehicle(2).starts_accepted() == 1;
-  });
+  StartTwoFromTheirStands(air, server);
+  ASSERT_EQ(air.vehicle(1).starts_accepted(), 1);
   ASSERT_EQ(air.vehicle(2).starts_accepted(), 1);
   // Head-on at one altitude, 500 m apart at 10 m/s each: 25 s to meet.
   const auto head_on = [&](std::uint8_t id, double north_m, double velocity_north_mps) {
