@@ -106,8 +106,8 @@ int main(int argc, char** argv) {
     fr::Scenario scenario = fr::LoadScenario(path);
     if (!scenario.random_fires) Usage("the scenario has no random_fires to place again");
     const std::uint64_t first = first_seed.value_or(scenario.random_fires->seed);
-    std::printf("%s: %d placements of %d random fires\n", path.c_str(), seeds,
-                scenario.random_fires->count);
+    std::printf("%s: %d placement%s of %d random fires\n", path.c_str(), seeds,
+                seeds == 1 ? "" : "s", scenario.random_fires->count);
     std::printf("fire seed confirmed  mean m  >=3 views  mean m  worst m  to confirm s\n");
     Tally all;
     for (int k = 0; k < seeds; ++k) {
